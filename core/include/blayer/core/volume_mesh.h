@@ -1,0 +1,74 @@
+// A mixed-element volume mesh as plain arrays, in VTK's cell types and node orders,
+// with named point and cell arrays. This is what the extruder and the tetrahedral fill
+// produce, what the quality module judges and what io/ writes to .vtu.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "blayer/core/vec3.h"
+
+namespace blayer {
+
+// Values are VTK's cell type ids, so they can be written as-is.
+enum class CellType : std::uint8_t { kTet = 10, kHex = 12, kWedge = 13, kPyramid = 14 };
+
+inline int corner_count(CellType t) {
+  switch (t) {
+    case CellType::kTet: return 4;
+    case CellType::kPyramid: return 5;
+    case CellType::kWedge: return 6;
+    case CellType::kHex: return 8;
+  }
+  return 0;
+}
+
+inline const char* cell_type_name(CellType t) {
+  switch (t) {
+    case CellType::kTet: return "tet";
+    case CellType::kPyramid: return "pyramid";
+    case CellType::kWedge: return "wedge";
+    case CellType::kHex: return "hex";
+  }
+  return "unknown";
+}
+
+// A named array of n_tuples x n_components values. Integer-valued arrays are written
+// as Int32 so ParaView shows them as categories.
+struct DataArray {
+  std::string name;
+  int n_components = 1;
+  bool integer = false;
+  std::vector<double> values;
+};
+
+struct VolumeMesh {
+  std::vector<Vec3> points;
+  std::vector<CellType> cell_types;
+  std::vector<std::int64_t> offsets{0};  // cell c uses connectivity[offsets[c], offsets[c+1])
+  std::vector<std::int64_t> connectivity;
+  std::vector<DataArray> point_data;
+  std::vector<DataArray> cell_data;
+
+  std::size_t n_cells() const { return cell_types.size(); }
+
+  void add_cell(CellType t, const std::int64_t* nodes) {
+    cell_types.push_back(t);
+    connectivity.insert(connectivity.end(), nodes, nodes + corner_count(t));
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+  }
+
+  const DataArray* find_cell_array(const std::string& name) const {
+    for (const DataArray& a : cell_data)
+      if (a.name == name) return &a;
+    return nullptr;
+  }
+  const DataArray* find_point_array(const std::string& name) const {
+    for (const DataArray& a : point_data)
+      if (a.name == name) return &a;
+    return nullptr;
+  }
+};
+
+}  // namespace blayer

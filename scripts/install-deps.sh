@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages blayer needs to build and test. Idempotent: packages
+# already present are skipped, and nothing is fetched when all are there.
+# Usage: scripts/install-deps.sh [--extras]   (--extras: gmsh and the picture tools)
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libopenmesh-dev           # surface input (STL/OBJ/OFF/PLY)
+  libvtk9-dev               # .vtu/.vtp input and output, cell validator
+  libtet1.5-dev             # tetrahedral fill
+  libgtest-dev              # tests
+  libbenchmark-dev          # benchmarks
+  libtbb-dev                # threads
+  libcli11-dev              # command line
+  libtomlplusplus-dev       # case files
+  nlohmann-json3-dev        # reports
+  libcgal-dev libgmp-dev libmpfr-dev  # exact orient3d
+  zlib1g-dev
+)
+if [[ "${1:-}" == "--extras" ]]; then
+  packages+=(gmsh python3-vtk9 xvfb xauth)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  exit 0
+fi
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+echo "Installing: ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"
