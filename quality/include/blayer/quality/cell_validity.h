@@ -1,7 +1,40 @@
-// Validity of a linear cell in VTK node order, decided by exact orient3d on every corner
-// tetrahedron: inverted if any corner tet is negative, flat if none is negative but one
-// is zero, valid if all are strictly positive.
+// Validity of a linear cell in VTK node order, decided by exact orient3d on a fixed set
+// of tetrahedra spanned by the cell's nodes (its "validity tets"): inverted if any is
+// negative, flat if none is negative but one is zero, valid if all are strictly positive.
+//
+// Node orders (VTK 9.1, see volume_mesh.h):
+//   tet     (0,1,2) has its right-hand normal pointing to node 3.
+//   pyramid base quad (0,1,2,3) has its right-hand normal pointing to the apex 4.
+//   wedge   cap (0,1,2) has its right-hand normal pointing AWAY from cap (3,4,5);
+//           column edges 0-3, 1-4, 2-5. A wall triangle (a,b,c) whose normal points
+//           into the fluid, extruded to (a',b',c'), is the wedge (a,c,b,a',c',b').
+//   hex     base quad (0,1,2,3) has its right-hand normal pointing to (4,5,6,7);
+//           column edges 0-4, 1-5, 2-6, 3-7.
+//
+// Validity tets, each ordered so that it is positive in a valid cell:
+//   tet     1: the cell itself.
+//   pyramid 4: each of the four triangles of the two base-quad splits, (0,1,2), (0,2,3),
+//           (0,1,3), (1,2,3), against the apex. These are also the corner tets of the
+//           four base nodes, and every corner tet of the apex is one of them.
+//   wedge   12: the six corner tets (a node with its three edge-neighbours) are exactly
+//           the six "cap against each node of the other cap" tets. They only say that
+//           each cap lies on the correct side of the other; a top cap rotated by 180
+//           degrees about the column passes them. So the six tets (two nodes of one cap
+//           edge, two nodes of the other cap not forming the matching edge) are added:
+//           the 12 tets are all the tets of all six splits of the wedge into three
+//           tets, and a wedge passes iff every split is a valid tet mesh. This rejects
+//           twisted quad faces whose twist makes some split fold; every affine image
+//           (e.g. a sheared prism) of a valid right prism passes.
+//   hex     8: the corner tet at each node (the node and its three edge-neighbours).
+//           Not decomposition-independent (a strongly twisted hex can pass); hexes are
+//           not produced by blayer, this is the customary check.
+//
+// Exactness: orient3d_sign is exact, so the result is exact for the given doubles:
+// a prism of relative height 1e-12 is decided correctly and the same on every machine.
 #pragma once
+
+#include <array>
+#include <cstddef>
 
 #include "blayer/core/vec3.h"
 #include "blayer/core/volume_mesh.h"
@@ -14,8 +47,14 @@ enum class Validity { kValid = 0, kFlat = 1, kInverted = 2 };
 Validity cell_validity(CellType type, const Vec3* corners);
 
 // A prism in VTK wedge order: (0,1,2) is the cap whose right-hand normal points away
-// from (3,4,5); 0-3, 1-4, 2-5 are the column edges. Valid iff all six corner tets
-// (each cap against each node of the other cap) are strictly positive.
+// from (3,4,5); 0-3, 1-4, 2-5 are the column edges. Valid iff all 12 wedge validity
+// tets above are strictly positive: the six corner tets (= each cap against each node
+// of the other cap) and the six cap-edge/other-cap tets that catch twisted columns.
+// Same answer as cell_validity(CellType::kWedge, corners) == Validity::kValid.
 bool prism_is_valid(const Vec3 corners[6]);
+
+// The validity tets of a cell type as local node indices, each positive (orient3d_sign
+// of (t[0], t[1], t[2], t[3]) > 0) in a valid cell. count receives their number.
+const std::array<int, 4>* validity_tets(CellType type, std::size_t* count);
 
 }  // namespace blayer

@@ -1,0 +1,66 @@
+#include "blayer/quality/cell_validity.h"
+
+#include "blayer/quality/orient3d.h"
+
+namespace blayer {
+
+namespace {
+
+constexpr std::array<int, 4> kTetTets[] = {{0, 1, 2, 3}};
+
+constexpr std::array<int, 4> kPyramidTets[] = {
+    {0, 1, 2, 4}, {0, 2, 3, 4}, {0, 1, 3, 4}, {1, 2, 3, 4}};
+
+// Base node i of the wedge has the cap neighbours next (i+1) and prev (i+2); the base
+// normal points away from the top, so (i, prev, next, i+3) is positive. The top cap has
+// the same winding, its normal points toward the base: (3+i, 3+next, 3+prev, i).
+// Cap-edge tets: base edge (i, next) with top nodes (i+3, prev+3) and (next+3, prev+3).
+constexpr std::array<int, 4> kWedgeTets[] = {
+    {0, 2, 1, 3}, {1, 0, 2, 4}, {2, 1, 0, 5},  // base corners
+    {3, 4, 5, 0}, {4, 5, 3, 1}, {5, 3, 4, 2},  // top corners
+    {0, 1, 3, 5}, {0, 1, 4, 5},                // base edge 0-1
+    {1, 2, 4, 3}, {1, 2, 5, 3},                // base edge 1-2
+    {2, 0, 5, 4}, {2, 0, 3, 4}};               // base edge 2-0
+
+// Base node i: (i, next, prev, i+4); top node 4+i: (4+i, 4+prev, 4+next, i).
+constexpr std::array<int, 4> kHexTets[] = {
+    {0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
+    {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
+
+template <std::size_t N>
+const std::array<int, 4>* with_count(const std::array<int, 4> (&tets)[N], std::size_t* count) {
+  *count = N;
+  return tets;
+}
+
+}  // namespace
+
+const std::array<int, 4>* validity_tets(CellType type, std::size_t* count) {
+  switch (type) {
+    case CellType::kTet: return with_count(kTetTets, count);
+    case CellType::kPyramid: return with_count(kPyramidTets, count);
+    case CellType::kWedge: return with_count(kWedgeTets, count);
+    case CellType::kHex: return with_count(kHexTets, count);
+  }
+  *count = 0;
+  return nullptr;
+}
+
+Validity cell_validity(CellType type, const Vec3* corners) {
+  std::size_t n = 0;
+  const std::array<int, 4>* tets = validity_tets(type, &n);
+  bool flat = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::array<int, 4>& t = tets[i];
+    const int s = orient3d_sign(corners[t[0]], corners[t[1]], corners[t[2]], corners[t[3]]);
+    if (s < 0) return Validity::kInverted;
+    if (s == 0) flat = true;
+  }
+  return flat ? Validity::kFlat : Validity::kValid;
+}
+
+bool prism_is_valid(const Vec3 corners[6]) {
+  return cell_validity(CellType::kWedge, corners) == Validity::kValid;
+}
+
+}  // namespace blayer

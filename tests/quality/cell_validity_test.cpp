@@ -1,0 +1,67 @@
+#include "blayer/quality/cell_validity.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "test_cells.h"
+
+namespace blayer {
+namespace {
+
+using test::mirrored;
+
+Validity validity(CellType t, const std::vector<Vec3>& p) {
+  EXPECT_EQ(static_cast<int>(p.size()), corner_count(t));
+  return cell_validity(t, p.data());
+}
+
+TEST(CellValidity, ReferenceCellsOfEveryTypeAreValid) {
+  EXPECT_EQ(validity(CellType::kTet, test::unit_tet()), Validity::kValid);
+  EXPECT_EQ(validity(CellType::kPyramid, test::unit_pyramid()), Validity::kValid);
+  EXPECT_EQ(validity(CellType::kWedge, test::right_prism()), Validity::kValid);
+  EXPECT_EQ(validity(CellType::kHex, test::unit_hex()), Validity::kValid);
+  EXPECT_TRUE(prism_is_valid(test::right_prism().data()));
+}
+
+TEST(CellValidity, MirroredCellsOfEveryTypeAreInverted) {
+  EXPECT_EQ(validity(CellType::kTet, mirrored(test::unit_tet())), Validity::kInverted);
+  EXPECT_EQ(validity(CellType::kPyramid, mirrored(test::unit_pyramid())), Validity::kInverted);
+  EXPECT_EQ(validity(CellType::kWedge, mirrored(test::right_prism())), Validity::kInverted);
+  EXPECT_EQ(validity(CellType::kHex, mirrored(test::unit_hex())), Validity::kInverted);
+  EXPECT_FALSE(prism_is_valid(mirrored(test::right_prism()).data()));
+}
+
+TEST(CellValidity, WedgeWrittenWithTheWallWindingIsInverted) {
+  // (a, b, c, a', b', c') for a wall triangle whose normal points to the top: the
+  // winding VTK rejects.
+  const std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+  EXPECT_EQ(validity(CellType::kWedge, p), Validity::kInverted);
+}
+
+TEST(CellValidity, ZeroHeightCellsAreFlat) {
+  EXPECT_EQ(validity(CellType::kPyramid, test::unit_pyramid(0.0)), Validity::kFlat);
+  EXPECT_EQ(validity(CellType::kWedge, test::right_prism(0.0)), Validity::kFlat);
+  EXPECT_FALSE(prism_is_valid(test::right_prism(0.0).data()));
+  std::vector<Vec3> tet = test::unit_tet();
+  tet[3] = {0.25, 0.25, 0.0};
+  EXPECT_EQ(validity(CellType::kTet, tet), Validity::kFlat);
+  std::vector<Vec3> hex = test::unit_hex();
+  for (int i = 4; i < 8; ++i) hex[i][2] = 0.0;
+  EXPECT_EQ(validity(CellType::kHex, hex), Validity::kFlat);
+}
+
+TEST(CellValidity, PrismWithOneCollapsedColumnEdgeIsFlat) {
+  std::vector<Vec3> p = test::right_prism();
+  p[4] = p[1];
+  EXPECT_EQ(validity(CellType::kWedge, p), Validity::kFlat);
+}
+
+TEST(CellValidity, PrismWhoseTopNodeCrossesTheWallIsInverted) {
+  std::vector<Vec3> p = test::right_prism();
+  p[5][2] = -0.1;
+  EXPECT_EQ(validity(CellType::kWedge, p), Validity::kInverted);
+}
+
+}  // namespace
+}  // namespace blayer
