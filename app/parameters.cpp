@@ -1,0 +1,242 @@
+#include "parameters.h"
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "blayer/core/errors.h"
+
+namespace blayer {
+
+namespace {
+
+constexpr unsigned kAll = kNormalsCmd | kExtrudeCmd | kCheckCmd;
+constexpr unsigned kSurfaceCmds = kNormalsCmd | kExtrudeCmd;
+
+const char* type_name(ParamType t) {
+  switch (t) {
+    case ParamType::kInt: return "int";
+    case ParamType::kReal: return "real";
+    case ParamType::kString: return "string";
+    case ParamType::kBool: return "bool";
+    case ParamType::kPath: return "path";
+  }
+  return "";
+}
+
+const ParamSpec* find_spec(const std::string& name) {
+  for (const ParamSpec& p : parameter_table())
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+// Parses and range-checks text for a parameter; returns the canonical text.
+std::string validate(const ParamSpec& p, const std::string& text, const std::string& where) {
+  auto fail = [&](const std::string& why) -> std::string {
+    throw InputError(where + ": --" + p.name + ": " + why + " (got '" + text + "')");
+  };
+  switch (p.type) {
+    case ParamType::kInt: {
+      std::size_t used = 0;
+      long v = 0;
+      try {
+        v = std::stol(text, &used);
+      } catch (...) {
+        fail("expected an integer");
+      }
+      if (used != text.size()) fail("expected an integer");
+      return std::to_string(v);
+    }
+    case ParamType::kReal: {
+      std::size_t used = 0;
+      double v = 0;
+      try {
+        v = std::stod(text, &used);
+      } catch (...) {
+        fail("expected a number");
+      }
+      if (used != text.size() || !std::isfinite(v)) fail("expected a finite number");
+      return text;
+    }
+    case ParamType::kBool:
+      if (text == "true" || text == "1") return "true";
+      if (text == "false" || text == "0") return "false";
+      return fail("expected true or false");
+    case ParamType::kString:
+      if (!p.choices.empty()) {
+        std::stringstream ss(p.choices);
+        std::string c;
+        while (std::getline(ss, c, '|'))
+          if (c == text) return text;
+        fail("expected one of " + p.choices);
+      }
+      return text;
+    case ParamType::kPath:
+      if (text.empty()) fail("expected a file name");
+      return text;
+  }
+  return text;
+}
+
+}  // namespace
+
+const std::vector<ParamSpec>& parameter_table() {
+  static const std::vector<ParamSpec> table = {
+      {"input", ParamType::kPath, "", "", "surface file (STL, OBJ, OFF, PLY, VTP, VTK; optionally .gz) or, for check, a volume mesh (.vtu, .vtk)", kAll},
+      {"output", ParamType::kPath, "", "", "output file: .vtp for normals, .vtu for extrude (default for extrude: <input name>_layers.vtu in the current directory)", kSurfaceCmds, "", 'o'},
+      {"config", ParamType::kPath, "", "", "TOML case file with any of these keys; command-line options override it; relative paths in it are relative to the file", kAll},
+      {"side", ParamType::kString, "outward", "", "side the layers grow on: outward (external flow) or inward (internal flow: pipes, arteries); closed surfaces oriented the other way are flipped", kSurfaceCmds, "outward|inward"},
+      {"allow-open", ParamType::kBool, "false", "", "accept a surface with boundary edges (holes); layers grow on the side its triangles' normals point to", kSurfaceCmds},
+      {"method", ParamType::kString, "most-normal", "", "point normal method: most-normal (maximises the minimum angle to the incident triangles), most-visible (maximises min n.f), or a weighted average: angle, area, unit, inverse-area, max", kSurfaceCmds, "most-normal|most-visible|angle|area|unit|inverse-area|max"},
+      {"layers", ParamType::kInt, "10", "", "number of prism layers per column before any local limiting", kExtrudeCmd},
+      {"first-height", ParamType::kReal, "", "length", "height of the first (wall) layer; default: 2e-4 x the bounding-box diagonal unless two of total-thickness, last-height, growth-ratio are given", kExtrudeCmd},
+      {"growth-ratio", ParamType::kReal, "1.2", "", "ratio of consecutive layer heights (used unless both total-thickness and one of first/last height are given)", kExtrudeCmd},
+      {"total-thickness", ParamType::kReal, "", "length", "total height of all layers", kExtrudeCmd},
+      {"last-height", ParamType::kReal, "", "length", "height of the last (outermost) layer", kExtrudeCmd},
+      {"relative-heights", ParamType::kBool, "false", "", "read first-height, total-thickness and last-height as multiples of the local mean edge length at each vertex", kExtrudeCmd},
+      {"envelope", ParamType::kPath, "", "", "also write the outer envelope of the layers as .vtp", kExtrudeCmd},
+      {"report", ParamType::kPath, "", "", "also write the run report as JSON", kExtrudeCmd},
+      {"fill", ParamType::kBool, "false", "", "fill the domain outside the layers (inside for --side inward) with tetrahedra (TetGen) for a hybrid mesh", kExtrudeCmd},
+      {"farfield", ParamType::kPath, "", "", "closed surface bounding the domain for --fill (default: a box, see farfield-scale)", kExtrudeCmd},
+      {"farfield-scale", ParamType::kReal, "10", "", "farfield box size for --fill, as a multiple of the body's bounding box (each side)", kExtrudeCmd},
+      {"fill-growth", ParamType::kReal, "1.3", "", "size growth rate of the tetrahedra from the layers' envelope to the farfield", kExtrudeCmd},
+      {"boundary", ParamType::kPath, "", "", "with --fill: write the boundary triangles with a marker array (1 wall, 2 farfield) as .vtp", kExtrudeCmd},
+      {"threads", ParamType::kInt, "0", "", "worker threads (0: all cores)", kAll},
+      {"json", ParamType::kPath, "", "", "write the check report as JSON", kCheckCmd},
+      {"bad", ParamType::kPath, "", "", "write only the failing cells with their metrics as .vtu", kCheckCmd},
+  };
+  return table;
+}
+
+bool ParamValues::is_set(const std::string& name) const {
+  auto it = set_.find(name);
+  return it != set_.end() && it->second;
+}
+
+std::string ParamValues::get_string(const std::string& name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) throw std::logic_error("parameter '" + name + "' is not defined for this command");
+  return it->second;
+}
+int ParamValues::get_int(const std::string& name) const { return std::stoi(get_string(name)); }
+double ParamValues::get_real(const std::string& name) const {
+  const std::string s = get_string(name);
+  return s.empty() ? 0.0 : std::stod(s);
+}
+bool ParamValues::get_bool(const std::string& name) const { return get_string(name) == "true"; }
+
+ParamBinder::ParamBinder(CLI::App* sub, unsigned command) : sub_(sub), command_(command) {
+  for (const ParamSpec& p : parameter_table()) {
+    if (!(p.commands & command)) continue;
+    std::string help = p.help;
+    if (!p.unit.empty()) help += " [" + p.unit + "]";
+    if (!p.default_value.empty()) help += " (default: " + p.default_value + ")";
+    if (p.name == "input") {
+      sub->add_option(p.name, cli_[p.name], help);
+    } else if (p.type == ParamType::kBool) {
+      sub->add_flag("--" + p.name, flags_[p.name], help);
+    } else {
+      std::string names = "--" + p.name;
+      if (p.short_name) names = std::string("-") + p.short_name + "," + names;
+      sub->add_option(names, cli_[p.name], help);
+    }
+  }
+}
+
+ParamValues ParamBinder::resolve() const {
+  ParamValues out;
+  out.command_ = command_;
+  auto given_on_cli = [&](const ParamSpec& p) {
+    if (p.name == "input") return sub_->count(p.name) > 0;
+    return sub_->count("--" + p.name) > 0;
+  };
+
+  // The case file, if any.
+  std::map<std::string, std::string> from_file;
+  std::string config;
+  if (auto it = cli_.find("config"); it != cli_.end()) config = it->second;
+  if (!config.empty()) {
+    toml::table tbl;
+    try {
+      tbl = toml::parse_file(config);
+    } catch (const toml::parse_error& e) {
+      std::ostringstream os;
+      os << config << ":" << e.source().begin.line << ": " << e.description();
+      throw InputError(os.str());
+    } catch (const std::exception& e) {
+      throw InputError(config + ": cannot read the case file (" + e.what() + ")");
+    }
+    const std::filesystem::path base = std::filesystem::path(config).parent_path();
+    for (const auto& [key, node] : tbl) {
+      const std::string k(key.str());
+      const ParamSpec* p = find_spec(k);
+      if (!p || !(p->commands & command_) || k == "config")
+        throw InputError(config + ": unknown key '" + k + "' for this command (see --help)");
+      std::string text;
+      if (auto v = node.value<std::string>()) {
+        text = *v;
+      } else if (node.is_boolean()) {
+        text = *node.value<bool>() ? "true" : "false";
+      } else if (node.is_integer()) {
+        text = std::to_string(*node.value<std::int64_t>());
+      } else if (node.is_floating_point()) {
+        std::ostringstream os;
+        os.precision(17);
+        os << *node.value<double>();
+        text = os.str();
+      } else {
+        throw InputError(config + ": key '" + k + "' must be a string, number or boolean");
+      }
+      if (p->type == ParamType::kPath && !text.empty() && std::filesystem::path(text).is_relative() &&
+          k != "output")
+        text = (base / text).string();
+      from_file[k] = validate(*p, text, config);
+    }
+  }
+
+  for (const ParamSpec& p : parameter_table()) {
+    if (!(p.commands & command_)) continue;
+    std::string value = p.default_value;
+    bool set = false;
+    if (auto it = from_file.find(p.name); it != from_file.end()) {
+      value = it->second;
+      set = true;
+    }
+    if (given_on_cli(p)) {
+      if (p.type == ParamType::kBool)
+        value = flags_.at(p.name) ? "true" : "false";
+      else
+        value = validate(p, cli_.at(p.name), "command line");
+      set = true;
+    }
+    out.values_[p.name] = value;
+    out.set_[p.name] = set;
+  }
+  return out;
+}
+
+std::string parameter_table_markdown() {
+  std::ostringstream os;
+  os << "| parameter | type | default | unit | commands | meaning |\n|---|---|---|---|---|---|\n";
+  for (const ParamSpec& p : parameter_table()) {
+    std::string cmds;
+    if (p.commands & kNormalsCmd) cmds += "normals ";
+    if (p.commands & kExtrudeCmd) cmds += "extrude ";
+    if (p.commands & kCheckCmd) cmds += "check ";
+    if (!cmds.empty()) cmds.pop_back();
+    std::string name = p.name == "input" ? "`INPUT` (positional)" : "`--" + p.name + "`";
+    std::string type = type_name(p.type);
+    if (!p.choices.empty()) {
+      type = p.choices;
+      for (char& c : type)
+        if (c == '|') c = '/';
+    }
+    os << "| " << name << " | " << type << " | " << (p.default_value.empty() ? "—" : p.default_value) << " | "
+       << (p.unit.empty() ? "—" : p.unit) << " | " << cmds << " | " << p.help << " |\n";
+  }
+  return os.str();
+}
+
+}  // namespace blayer

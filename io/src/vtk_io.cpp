@@ -1,0 +1,200 @@
+#include "blayer/io/vtk_io.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkUnstructuredGridReader.h>
+#include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLUnstructuredGridReader.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <filesystem>
+
+#include "blayer/core/errors.h"
+#include "blayer/io/atomic_file.h"
+
+namespace blayer {
+
+namespace {
+
+vtkSmartPointer<vtkDataArray> to_vtk(const DataArray& a) {
+  vtkSmartPointer<vtkDataArray> arr;
+  if (a.integer)
+    arr = vtkSmartPointer<vtkIntArray>::New();
+  else
+    arr = vtkSmartPointer<vtkDoubleArray>::New();
+  arr->SetName(a.name.c_str());
+  arr->SetNumberOfComponents(a.n_components);
+  const vtkIdType n = static_cast<vtkIdType>(a.values.size() / a.n_components);
+  arr->SetNumberOfTuples(n);
+  if (a.integer) {
+    auto* ia = vtkIntArray::SafeDownCast(arr);
+    for (vtkIdType i = 0; i < n * a.n_components; ++i) ia->SetValue(i, static_cast<int>(a.values[i]));
+  } else {
+    auto* da = vtkDoubleArray::SafeDownCast(arr);
+    for (vtkIdType i = 0; i < n * a.n_components; ++i) da->SetValue(i, a.values[i]);
+  }
+  return arr;
+}
+
+void check_size(const DataArray& a, std::size_t n, const char* what, const std::string& path) {
+  if (a.n_components < 1 || a.values.size() != n * static_cast<std::size_t>(a.n_components))
+    throw std::logic_error(path + ": array '" + a.name + "' has " + std::to_string(a.values.size()) +
+                           " values for " + std::to_string(n) + " " + what);
+}
+
+vtkSmartPointer<vtkPoints> to_vtk_points(const std::vector<Vec3>& pts) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(pts.size()));
+  for (std::size_t i = 0; i < pts.size(); ++i) points->SetPoint(static_cast<vtkIdType>(i), pts[i].data());
+  return points;
+}
+
+template <class Writer>
+void write_atomically(Writer* w, vtkDataObject* data, const std::string& path) {
+  AtomicFile file(path);
+  w->SetInputData(data);
+  w->SetFileName(file.temp_path().c_str());
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
+  w->SetCompressorTypeToZLib();
+  if (w->Write() != 1 || w->GetErrorCode() != 0) throw IoError(path + ": cannot write the file");
+  file.commit();
+}
+
+void copy_arrays(vtkFieldData* from, std::vector<DataArray>* to, const std::vector<char>* keep) {
+  for (int i = 0; i < from->GetNumberOfArrays(); ++i) {
+    vtkDataArray* arr = vtkDataArray::SafeDownCast(from->GetAbstractArray(i));
+    if (!arr || !arr->GetName()) continue;
+    DataArray a;
+    a.name = arr->GetName();
+    a.n_components = arr->GetNumberOfComponents();
+    a.integer = arr->GetDataType() != VTK_FLOAT && arr->GetDataType() != VTK_DOUBLE;
+    const vtkIdType n = arr->GetNumberOfTuples();
+    for (vtkIdType t = 0; t < n; ++t) {
+      if (keep && !(*keep)[t]) continue;
+      for (int c = 0; c < a.n_components; ++c) a.values.push_back(arr->GetComponent(t, c));
+    }
+    to->push_back(std::move(a));
+  }
+}
+
+}  // namespace
+
+void write_vtu(const VolumeMesh& mesh, const std::string& path) {
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(to_vtk_points(mesh.points));
+  vtkNew<vtkIdTypeArray> offsets, conn;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(mesh.offsets.size()));
+  for (std::size_t i = 0; i < mesh.offsets.size(); ++i) offsets->SetValue(static_cast<vtkIdType>(i), mesh.offsets[i]);
+  conn->SetNumberOfValues(static_cast<vtkIdType>(mesh.connectivity.size()));
+  for (std::size_t i = 0; i < mesh.connectivity.size(); ++i)
+    conn->SetValue(static_cast<vtkIdType>(i), mesh.connectivity[i]);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, conn);
+  vtkNew<vtkUnsignedCharArray> types;
+  types->SetNumberOfValues(static_cast<vtkIdType>(mesh.cell_types.size()));
+  for (std::size_t i = 0; i < mesh.cell_types.size(); ++i)
+    types->SetValue(static_cast<vtkIdType>(i), static_cast<unsigned char>(mesh.cell_types[i]));
+  grid->SetCells(types, cells);
+  for (const DataArray& a : mesh.point_data) {
+    check_size(a, mesh.points.size(), "points", path);
+    grid->GetPointData()->AddArray(to_vtk(a));
+  }
+  for (const DataArray& a : mesh.cell_data) {
+    check_size(a, mesh.n_cells(), "cells", path);
+    grid->GetCellData()->AddArray(to_vtk(a));
+  }
+  vtkNew<vtkXMLUnstructuredGridWriter> w;
+  write_atomically(w.Get(), grid, path);
+}
+
+void write_vtp(const TriSurface& s, const std::vector<DataArray>& point_data, const std::vector<DataArray>& cell_data,
+               const std::string& path) {
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(to_vtk_points(s.points));
+  vtkNew<vtkCellArray> tris;
+  tris->AllocateExact(static_cast<vtkIdType>(s.triangles.size()), static_cast<vtkIdType>(3 * s.triangles.size()));
+  for (const Triangle& t : s.triangles) {
+    const vtkIdType ids[3] = {t[0], t[1], t[2]};
+    tris->InsertNextCell(3, ids);
+  }
+  poly->SetPolys(tris);
+  for (const DataArray& a : point_data) {
+    check_size(a, s.points.size(), "points", path);
+    poly->GetPointData()->AddArray(to_vtk(a));
+  }
+  for (const DataArray& a : cell_data) {
+    check_size(a, s.triangles.size(), "triangles", path);
+    poly->GetCellData()->AddArray(to_vtk(a));
+  }
+  vtkNew<vtkXMLPolyDataWriter> w;
+  write_atomically(w.Get(), poly, path);
+}
+
+VolumeMeshFile read_volume_mesh(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": no such file");
+  if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": the file is empty");
+  const std::string ext = std::filesystem::path(path).extension().string();
+  vtkSmartPointer<vtkUnstructuredGrid> grid;
+  if (ext == ".vtu") {
+    vtkNew<vtkXMLUnstructuredGridReader> r;
+    if (!r->CanReadFile(path.c_str())) throw InputError(path + ": not a VTK XML unstructured grid (.vtu)");
+    r->SetFileName(path.c_str());
+    r->Update();
+    if (r->GetErrorCode() != 0) throw InputError(path + ": cannot parse the .vtu file");
+    grid = r->GetOutput();
+  } else if (ext == ".vtk") {
+    vtkNew<vtkUnstructuredGridReader> r;
+    r->SetFileName(path.c_str());
+    if (!r->IsFileUnstructuredGrid()) throw InputError(path + ": not a legacy VTK unstructured grid");
+    r->Update();
+    grid = r->GetOutput();
+  } else {
+    throw InputError(path + ": unknown volume mesh format '" + ext + "' (expected .vtu or .vtk)");
+  }
+  if (!grid || grid->GetNumberOfPoints() == 0) throw InputError(path + ": the mesh has no points");
+
+  VolumeMeshFile out;
+  VolumeMesh& m = out.mesh;
+  m.points.resize(grid->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i) grid->GetPoint(i, m.points[i].data());
+  const vtkIdType nc = grid->GetNumberOfCells();
+  std::vector<char> keep(nc, 0);
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < nc; ++c) {
+    const int type = grid->GetCellType(c);
+    if (type == VTK_TETRA || type == VTK_PYRAMID || type == VTK_WEDGE || type == VTK_HEXAHEDRON) {
+      grid->GetCellPoints(c, ids);
+      std::int64_t nodes[8];
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) nodes[k] = ids->GetId(k);
+      m.add_cell(static_cast<CellType>(type), nodes);
+      keep[c] = 1;
+    } else if (type == VTK_VERTEX || type == VTK_POLY_VERTEX || type == VTK_LINE || type == VTK_POLY_LINE ||
+               type == VTK_TRIANGLE || type == VTK_QUAD || type == VTK_POLYGON || type == VTK_TRIANGLE_STRIP ||
+               type == VTK_EMPTY_CELL) {
+      ++out.n_skipped_lower_dimension;
+    } else {
+      throw InputError(path + ": cell " + std::to_string(c) + " has VTK type " + std::to_string(type) +
+                       ", which is not supported (linear tet, pyramid, wedge and hexahedron are)");
+    }
+  }
+  copy_arrays(grid->GetPointData(), &m.point_data, nullptr);
+  copy_arrays(grid->GetCellData(), &m.cell_data, &keep);
+  return out;
+}
+
+}  // namespace blayer
