@@ -1,0 +1,147 @@
+#include <gtest/gtest.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <filesystem>
+
+#include "../io/temp_dir.h"
+#include "run_cli.h"
+
+namespace blayer {
+namespace {
+
+using testing::run_blayer;
+using testing::TempDir;
+using testing::tetra_off;
+
+// A bad-input run: exit 1, a message on stderr starting with "error:" that contains
+// `fragment`, no signal, and no output file left behind.
+void expect_clean_failure(const std::string& args, const TempDir& dir, const std::string& output,
+                          const std::string& fragment) {
+  const auto r = run_blayer(args, dir.file(""));
+  EXPECT_EQ(r.signal, 0) << args;
+  EXPECT_EQ(r.status, 1) << args << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind("error:", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(output)) << output;
+}
+
+TEST(Cli, HelpOfEveryCommandExitsZero) {
+  TempDir dir;
+  for (const char* cmd : {"--help", "normals --help", "extrude --help", "check --help"}) {
+    const auto r = run_blayer(cmd, dir.file(""));
+    EXPECT_EQ(r.status, 0) << cmd;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << cmd;
+  }
+}
+
+TEST(Cli, ExtrudeHelpListsTheGrowthParameters) {
+  TempDir dir;
+  const auto r = run_blayer("extrude --help", dir.file(""));
+  for (const char* opt : {"--layers", "--first-height", "--growth-ratio", "--total-thickness", "--side", "--config"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+}
+
+TEST(Cli, UnknownOptionIsAnError) {
+  TempDir dir;
+  dir.write("t.off", tetra_off());
+  expect_clean_failure("normals " + dir.file("t.off") + " -o " + dir.file("n.vtp") + " --frobnicate", dir,
+                       dir.file("n.vtp"), "--frobnicate");
+}
+
+TEST(Cli, MalformedNumberIsAnError) {
+  TempDir dir;
+  dir.write("t.off", tetra_off());
+  expect_clean_failure("extrude " + dir.file("t.off") + " -o " + dir.file("o.vtu") + " --layers ten", dir,
+                       dir.file("o.vtu"), "--layers: expected an integer");
+}
+
+TEST(Cli, UnknownConfigKeyIsAnError) {
+  TempDir dir;
+  dir.write("t.off", tetra_off());
+  dir.write("case.toml", "input = \"t.off\"\nlayer = 3\n");
+  expect_clean_failure("normals --config " + dir.file("case.toml") + " -o " + dir.file("n.vtp"), dir,
+                       dir.file("n.vtp"), "unknown key 'layer'");
+}
+
+TEST(Cli, BadSurfaceFailsWithTheFileAndElementNamedAndNoOutput) {
+  TempDir dir;
+  // Tetrahedron with one face missing: a hole.
+  dir.write("hole.off", "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n");
+  expect_clean_failure("normals " + dir.file("hole.off") + " -o " + dir.file("n.vtp"), dir, dir.file("n.vtp"),
+                       "hole.off");
+  expect_clean_failure("extrude " + dir.file("hole.off") + " -o " + dir.file("o.vtu"), dir, dir.file("o.vtu"),
+                       "open boundary edges");
+}
+
+TEST(Cli, GarbageInputNeverCrashes) {
+  TempDir dir;
+  dir.write("g.stl", "solid x\nfacet normal nan nan\n\x01\x02 vertex 1e999 2 3\n");
+  dir.write("g.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n3 0 1 2\n");
+  dir.write("g.obj", "v 0 0 0\nf 1 2 3\n");
+  for (const char* f : {"g.stl", "g.off", "g.obj"}) {
+    const auto r = run_blayer(std::string("extrude ") + dir.file(f) + " -o " + dir.file("o.vtu"), dir.file(""));
+    EXPECT_EQ(r.signal, 0) << f;
+    EXPECT_EQ(r.status, 1) << f << r.err;
+    EXPECT_EQ(r.err.rfind("error:", 0), 0u) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("o.vtu")));
+  }
+}
+
+TEST(Cli, NormalsWritesTheContractArraysInInputOrder) {
+  TempDir dir;
+  dir.write("t.off", tetra_off());
+  const auto r = run_blayer("normals " + dir.file("t.off") + " -o " + dir.file("n.vtp"), dir.file(""));
+  ASSERT_EQ(r.status, 0) << r.err;
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(dir.file("n.vtp").c_str());
+  reader->Update();
+  vtkPolyData* poly = reader->GetOutput();
+  ASSERT_EQ(poly->GetNumberOfPoints(), 4);
+  EXPECT_EQ(poly->GetNumberOfPolys(), 4);
+  double p[3];
+  poly->GetPoint(1, p);
+  EXPECT_EQ(p[0], 1.0);
+  for (const char* name : {"normal", "visibility", "normality_deg", "normal_status"})
+    EXPECT_NE(poly->GetPointData()->GetArray(name), nullptr) << name;
+  vtkDataArray* n = poly->GetPointData()->GetArray("normal");
+  ASSERT_EQ(n->GetNumberOfComponents(), 3);
+  for (vtkIdType i = 0; i < 4; ++i) {
+    double v[3];
+    n->GetTuple(i, v);
+    EXPECT_NEAR(v[0] * v[0] + v[1] * v[1] + v[2] * v[2], 1.0, 1e-12);
+  }
+  // Vertex 0 is the corner at the origin of an outward tetrahedron: its normal points
+  // away from the body, into the negative octant.
+  double v0[3];
+  n->GetTuple(0, v0);
+  EXPECT_LT(v0[0], 0.0);
+  EXPECT_LT(v0[1], 0.0);
+  EXPECT_LT(v0[2], 0.0);
+}
+
+TEST(Cli, ConfigFileIsReadAndCommandLineOverridesIt) {
+  TempDir dir;
+  dir.write("t.off", tetra_off());
+  dir.write("case.toml", "input = \"t.off\"\nmethod = \"unit\"\n");
+  auto r = run_blayer("normals --config " + dir.file("case.toml") + " -o " + dir.file("n.vtp"), dir.file(""));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("method unit"), std::string::npos) << r.out;
+  r = run_blayer("normals --config " + dir.file("case.toml") + " --method angle -o " + dir.file("n.vtp"),
+                 dir.file(""));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("method angle"), std::string::npos) << r.out;
+}
+
+TEST(Cli, CheckOfAMissingMeshIsAnInputError) {
+  TempDir dir;
+  const auto r = run_blayer("check " + dir.file("none.vtu"), dir.file(""));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_EQ(r.err.rfind("error:", 0), 0u) << r.err;
+}
+
+}  // namespace
+}  // namespace blayer
