@@ -1,5 +1,7 @@
 #include "blayer/normals/vertex_normal.h"
 
+#include "blayer/normals/most_normal.h"
+#include "blayer/normals/most_visible.h"
 #include "blayer/normals/weighted_normal.h"
 
 namespace blayer {
@@ -18,13 +20,33 @@ VertexNormal finish(const FanGeometry& g, const Vec3& n, NormalStatus status) {
 }  // namespace
 
 VertexNormal compute_vertex_normal(const FanGeometry& g, NormalMethod method, const Tolerances& tol) {
-  (void)tol;
   const bool weighted = method != NormalMethod::kMostNormal && method != NormalMethod::kMostVisible;
-  const Vec3 angle = weighted_average_normal(g, weighted ? method : NormalMethod::kAngle);
-  if (norm2(angle) == 0.0) return finish(g, angle, NormalStatus::kDegenerateFan);
-  if (g.any_degenerate) return finish(g, angle, NormalStatus::kDegenerateFan);
-  if (!g.closed) return finish(g, angle, NormalStatus::kBoundary);
-  return finish(g, angle, NormalStatus::kOk);
+  if (g.n_faces() == 0) return finish(g, Vec3{0.0, 0.0, 0.0}, NormalStatus::kDegenerateFan);
+  if (g.any_degenerate) {
+    return finish(g, weighted_average_normal(g, NormalMethod::kAngle), NormalStatus::kDegenerateFan);
+  }
+  if (weighted) {
+    const Vec3 n = weighted_average_normal(g, method);
+    if (norm2(n) == 0.0) return finish(g, n, NormalStatus::kDegenerateFan);
+    return finish(g, n, g.closed ? NormalStatus::kOk : NormalStatus::kBoundary);
+  }
+  if (method == NormalMethod::kMostVisible || !g.closed) {
+    const MostVisibleResult mv = most_visible_normal(g.face_normals.data(), g.n_faces(), tol);
+    VertexNormal r;
+    r.normal = mv.normal;
+    r.visibility = mv.visibility;
+    r.normality = fan_normality(g, mv.normal);
+    r.status = !mv.feasible ? NormalStatus::kNoVisibleDirection
+                            : (g.closed ? NormalStatus::kOk : NormalStatus::kBoundary);
+    return r;
+  }
+  const MostNormalResult mn = most_normal_normal(g, tol);
+  VertexNormal r;
+  r.normal = mn.normal;
+  r.visibility = mn.visibility;
+  r.normality = mn.normality;
+  r.status = mn.status;
+  return r;
 }
 
 }  // namespace blayer

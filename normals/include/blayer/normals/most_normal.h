@@ -1,0 +1,52 @@
+// Most-normal normal (docs/normals.md, Part 2; Aubry & Loehner 2008, Aubry et al. 2015):
+// n_MN = argmax_{n in R} D(n), where R is the fluid region of the sphere bounded by the
+// vertex link (left of every arc u_i -> v_i) and D(n) the angle from n to the nearest
+// direction inside an incident triangle: the centre of the largest empty circle among
+// the link arcs.
+//
+// Algorithm (exact enumeration):
+//   1. Most-visible normal and V* (most_visible.h). V* < tol.min_visibility: no
+//      visible direction, return the best-margin direction (kNoVisibleDirection).
+//   2. Fold test: the winding number of the link around n_MV must be 1, otherwise the
+//      link overlaps itself, has no fluid side, and the angle average is returned
+//      (kDegenerateFan).
+//   3. Sites: link arcs merged along common great circles (|f_i.v_{i+1}| <=
+//      tol.coplanar_arc, merged length < pi) and reflex link vertices (f_i.v_{i+1} < 0).
+//      No reflex vertex: MN = MV. All junctions reflex (convex solid corner): MN is the
+//      antipode of the smallest cap holding the link vertices.
+//   4. Otherwise every 1-, 2- and 3-site critical point of the Voronoi diagram of the
+//      sites is a candidate (poles, antipodes, bisector peaks, point-arc parabola
+//      extrema, Voronoi vertices); candidates outside R are discarded by the
+//      nearest-feature side test; the true D is evaluated, and a candidate dies as soon
+//      as one arc is closer than the best so far.
+//   5. Constraint (constrain_visibility, the default): maximise D over R with
+//      V >= V_min = V*/2. When the unconstrained optimum violates it, candidates on the
+//      circles n.f_i = V_min (with each other, with every bisector, and single-site
+//      extrema along them) are added and the status is kVisibilityConstrained; MV is
+//      always a feasible fallback.
+//   6. Ties: all candidates with D >= D* - tol.normality_tie are maximisers; when they
+//      differ the plateau circles of concentric sites (antipodal reflex vertices, a
+//      reflex vertex at an arc's pole, arcs on one circle) are searched for the largest V
+//      on the plateau, and the status is kNonUnique.
+// Cost: O(|A|^3 + |P|^2|A| + |P||A|^2) candidates times O(k) evaluations, pruned.
+// Preconditions: closed fan without degenerate triangles (compute_vertex_normal handles
+// the others).
+#pragma once
+
+#include "blayer/normals/fan_geometry.h"
+#include "blayer/normals/point_normals.h"
+
+namespace blayer {
+
+struct MostNormalResult {
+  Vec3 normal{0.0, 0.0, 0.0};
+  double normality = 0.0;   // D(normal), radians
+  double visibility = 0.0;  // V(normal)
+  NormalStatus status = NormalStatus::kOk;
+  int n_candidates = 0;     // candidates evaluated (diagnostics and benchmarks)
+};
+
+MostNormalResult most_normal_normal(const FanGeometry& g, const Tolerances& tol = default_tolerances(),
+                                    bool constrain_visibility = true);
+
+}  // namespace blayer

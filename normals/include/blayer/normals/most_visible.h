@@ -1,0 +1,50 @@
+// Most-visible normal (docs/normals.md, Part 1): n_MV = argmax_{|n|=1} min_i n.f_i, the
+// centre of the smallest spherical cap holding the face normals f_i; V* = min_i n_MV.f_i.
+//
+// Algorithm: the min-norm point q* of conv{f_i} gives n_MV = q*/|q*| and V* = |q*|.
+// most_visible_normal runs Wolfe's min-norm-point algorithm (Wolfe 1976; an exact
+// active-set method that ends in finitely many steps) and accepts its answer only with
+// the optimality certificate lambda >= 0 on the support (|S| <= 3) and
+// f_j.q >= |q|^2 - slack for every j. Without a certificate (singular affine hull from
+// rounding) it falls back to most_visible_by_enumeration, which tries every support of
+// at most 3 distinct normals (duplicates closer than tol.duplicate_normal merged).
+//
+// No visible direction: when 0 lies in conv{f_i} (Gordan) or V* < tol.min_visibility,
+// feasible is false and the result is the direction of best margin
+// max_n min_i n.f_i = -dist(0, boundary of conv{f_i}) <= 0 (or the tiny V*), found by
+// evaluating every facet-normal, pair-bisector and single-face direction; it is never a
+// silent arbitrary vector.
+//
+// Input: k >= 1 unit vectors. Cost O(k) per Wolfe step (a few steps in practice);
+// O(k^4) for the enumeration and margin fallbacks.
+#pragma once
+
+#include <vector>
+
+#include "blayer/core/tolerances.h"
+#include "blayer/core/vec3.h"
+
+namespace blayer {
+
+struct MostVisibleResult {
+  Vec3 normal{0.0, 0.0, 0.0};  // unit
+  double visibility = 0.0;     // V* when feasible, else the best margin (<= V* small)
+  bool feasible = false;       // V* >= tol.min_visibility with a certificate
+  int support_size = 0;        // faces carrying positive multipliers (feasible only)
+};
+
+MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& tol = default_tolerances());
+MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k,
+                                              const Tolerances& tol = default_tolerances());
+
+// max over unit n of min_i n.f_i with its maximiser, by direct candidate evaluation
+// (facet normals of conv{f_i}, pair bisectors, single faces). Exact for any input,
+// O(k^4); used when no visible direction exists.
+MostVisibleResult best_margin_direction(const Vec3* f, int k);
+
+inline MostVisibleResult most_visible_normal(const std::vector<Vec3>& f,
+                                             const Tolerances& tol = default_tolerances()) {
+  return most_visible_normal(f.data(), static_cast<int>(f.size()), tol);
+}
+
+}  // namespace blayer

@@ -1,0 +1,410 @@
+#include "blayer/normals/most_normal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "blayer/normals/most_visible.h"
+#include "blayer/normals/weighted_normal.h"
+#include "sphere_solvers.h"
+
+namespace blayer {
+
+namespace {
+
+// Maximisers farther apart than this (radians) are distinct optima, i.e. a plateau or
+// a discrete tie. Candidates for one point computed from different site triples agree
+// to ~1e-12; an off-plateau optimum moves by O(eps) under an eps perturbation, so 1e-6
+// separates real ties from rounding with a wide margin on both sides.
+constexpr double kDistinctMaximizers = 1e-6;
+
+// Slack on V >= V_min for candidates constructed on a constraint circle n.f_i = V_min:
+// their computed V carries ~1e-16 rounding, 1e-12 accepts them without admitting any
+// meaningfully invisible direction.
+constexpr double kConstraintSlack = 1e-12;
+
+struct Arc {
+  Vec3 u, v, g;
+};
+
+struct Maximizer {
+  Vec3 n;
+  double d;
+  double v;
+};
+
+class Solver {
+ public:
+  Solver(const FanGeometry& g, const Tolerances& tol) : g_(g), tol_(tol) {}
+
+  MostNormalResult run(bool constrain_visibility);
+
+ private:
+  // Distance to the link with early exit below thr; sets *fluid from the nearest feature.
+  bool evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) const;
+  void consider(Vec3 n);
+  bool build_sites();
+  void enumerate_unconstrained();
+  void enumerate_constrained();
+  void search_plateaus();
+  void add_maximizer(const Vec3& n, double d, double v);
+  static bool distinct(const std::vector<Maximizer>& maxima);
+
+  const FanGeometry& g_;
+  const Tolerances& tol_;
+  std::vector<Arc> arcs_;
+  std::vector<Vec3> pts_;
+  double v_min_ = 0.0;
+  bool constrained_ = false;
+  bool constrained_pass_ = false;
+  double best_c_ = -std::numeric_limits<double>::infinity();
+  double best_u_ = -std::numeric_limits<double>::infinity();
+  std::vector<Maximizer> maxima_;    // D >= best_c_ - tie among V >= V_min
+  std::vector<Maximizer> maxima_u_;  // D >= best_u_ - tie, any V
+  int n_candidates_ = 0;
+};
+
+bool Solver::evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) const {
+  const int k = g_.n_faces();
+  double best = std::numeric_limits<double>::infinity();
+  int feature_arc = -1;
+  int feature_kind = 0;  // 0: arc interior or pole, 1: arc start, 2: arc end
+  for (int i = 0; i < k; ++i) {
+    const Vec3& f = g_.face_normals[i];
+    const Vec3& u = g_.arc_start(i);
+    const Vec3& v = g_.arc_end(i);
+    const double nf = dot(n, f);
+    const Vec3 m = n - nf * f;
+    const double mm = norm(m);
+    double d;
+    int kind = 0;
+    if (mm == 0.0) {
+      d = 0.5 * M_PI;
+    } else if (dot(cross(u, m), f) >= 0.0 && dot(cross(m, v), f) >= 0.0) {
+      d = std::atan2(std::fabs(nf), mm);
+    } else {
+      const double du = angle_between(n, u), dv = angle_between(n, v);
+      d = du <= dv ? du : dv;
+      kind = du <= dv ? 1 : 2;
+    }
+    if (d < thr) return false;
+    if (d < best) {
+      best = d;
+      feature_arc = i;
+      feature_kind = kind;
+    }
+  }
+  *d_out = best;
+  if (feature_kind == 0) {
+    *fluid = dot(n, g_.face_normals[feature_arc]) > 0.0;
+    return true;
+  }
+  // Link vertex j joins arc j-1 (incoming) and arc j (outgoing).
+  const int j = feature_kind == 1 ? feature_arc : (feature_arc + 1) % k;
+  const Vec3& w = g_.dirs[j];
+  const Vec3& prev = g_.dirs[(j + k - 1) % k];
+  const Vec3& next = g_.dirs[(j + 1) % k];
+  const Vec3 t_in = prev - dot(prev, w) * w;
+  const Vec3 t_out = next - dot(next, w) * w;
+  const Vec3 t_n = n - dot(n, w) * w;
+  const Vec3 left = cross(w, t_out);
+  auto beta = [&](const Vec3& x) {
+    const double b = std::atan2(dot(left, x), dot(t_out, x));
+    return b < 0.0 ? b + 2.0 * M_PI : b;
+  };
+  *fluid = beta(t_n) < beta(t_in);
+  return true;
+}
+
+void Solver::add_maximizer(const Vec3& n, double d, double v) {
+  if (d > best_c_) {
+    best_c_ = d;
+    maxima_.erase(std::remove_if(maxima_.begin(), maxima_.end(),
+                                 [&](const Maximizer& m) { return m.d < best_c_ - tol_.normality_tie; }),
+                  maxima_.end());
+  }
+  maxima_.push_back({n, d, v});
+}
+
+void Solver::consider(Vec3 n) {
+  const double len = norm(n);
+  if (!(len > 0.0) || !std::isfinite(len)) return;
+  n = n / len;
+  ++n_candidates_;
+  const double v = fan_visibility(g_, n);
+  const bool feasible = !constrained_ || v >= v_min_ - kConstraintSlack;
+  if (constrained_pass_ && !feasible) return;
+  const double thr = (feasible ? best_c_ : best_u_) - tol_.normality_tie;
+  double d;
+  bool fluid;
+  if (!evaluate(n, thr, &d, &fluid) || !fluid) return;
+  if (d > best_u_) {
+    best_u_ = d;
+    maxima_u_.erase(std::remove_if(maxima_u_.begin(), maxima_u_.end(),
+                                   [&](const Maximizer& m) { return m.d < best_u_ - tol_.normality_tie; }),
+                    maxima_u_.end());
+  }
+  if (d >= best_u_ - tol_.normality_tie) maxima_u_.push_back({n, d, v});
+  if (feasible) add_maximizer(n, d, v);
+}
+
+bool Solver::build_sites() {
+  const int k = g_.n_faces();
+  // Junction j: between arc j-1 and arc j at dirs[j].
+  std::vector<char> straight(k), reflex(k);
+  for (int j = 0; j < k; ++j) {
+    const int a = (j + k - 1) % k;
+    const double side = dot(g_.face_normals[a], g_.dirs[(j + 1) % k]);
+    straight[j] = std::fabs(side) <= tol_.coplanar_arc && dot(g_.face_normals[a], g_.face_normals[j]) > 0.0;
+    reflex[j] = !straight[j] && side < 0.0;
+    if (reflex[j]) pts_.push_back(g_.dirs[j]);
+  }
+  int start = 0;
+  while (start < k && straight[start]) ++start;
+  if (start == k) start = 0;
+  for (int c = 0; c < k;) {
+    const int i0 = (start + c) % k;
+    double length = g_.angles[i0];
+    int len = 1;
+    while (c + len < k) {
+      const int j = (start + c + len) % k;
+      if (!straight[j] || length + g_.angles[j] >= M_PI) break;
+      length += g_.angles[j];
+      ++len;
+    }
+    arcs_.push_back({g_.dirs[i0], g_.dirs[(i0 + len) % k], g_.face_normals[i0]});
+    c += len;
+  }
+  bool all_reflex = true;
+  for (int j = 0; j < k; ++j) all_reflex &= straight[j] || reflex[j];
+  return all_reflex;
+}
+
+void Solver::enumerate_unconstrained() {
+  const int np = static_cast<int>(pts_.size()), na = static_cast<int>(arcs_.size());
+  for (const Vec3& w : pts_) consider(-w);
+  for (const Arc& a : arcs_) consider(a.g);
+  for (int a = 0; a < np; ++a)
+    for (int b = a + 1; b < np; ++b) consider(-(pts_[a] + pts_[b]));
+  for (int a = 0; a < na; ++a)
+    for (int b = a + 1; b < na; ++b) consider(arcs_[a].g + arcs_[b].g);
+  // Point-arc parabola extrema: where it crosses the plane of w and f.
+  for (const Vec3& w : pts_)
+    for (const Arc& arc : arcs_) {
+      const Vec3 e2 = normalized(arc.g - dot(w, arc.g) * w);
+      if (norm2(e2) == 0.0) continue;
+      const double tf = std::atan2(dot(arc.g, e2), dot(w, arc.g));
+      for (double t0 : {0.5 * (tf + 0.5 * M_PI), 0.5 * (tf - 0.5 * M_PI)})
+        for (double t : {t0, t0 + M_PI}) consider(std::cos(t) * w + std::sin(t) * e2);
+    }
+  for (int a = 0; a < np; ++a)
+    for (int b = a + 1; b < np; ++b)
+      for (int c = b + 1; c < np; ++c) {
+        const Vec3 h = cross(pts_[a] - pts_[b], pts_[b] - pts_[c]);
+        consider(h);
+        consider(-h);
+      }
+  for (int a = 0; a < na; ++a)
+    for (int b = a + 1; b < na; ++b)
+      for (int c = b + 1; c < na; ++c) {
+        const Vec3 h = cross(arcs_[a].g - arcs_[b].g, arcs_[b].g - arcs_[c].g);
+        consider(h);
+        consider(-h);
+      }
+  auto emit = [this](const Vec3& n) { consider(n); };
+  // Point-point bisector (great circle) against point-arc bisector (cone).
+  for (int a = 0; a < np; ++a)
+    for (int b = a + 1; b < np; ++b) {
+      const Vec3 h = normalized(pts_[a] - pts_[b]);
+      if (norm2(h) == 0.0) continue;
+      for (const Arc& arc : arcs_) {
+        detail::circle_cone(h, 0.0, pts_[a], arc.g, emit);
+        const Vec3 x = cross(h, cross(pts_[a], arc.g));
+        consider(x);
+        consider(-x);
+      }
+    }
+  // Arc-arc bisector (great circle) against point-arc bisector (cone).
+  for (int a = 0; a < na; ++a)
+    for (int b = a + 1; b < na; ++b) {
+      const Vec3 h = normalized(arcs_[a].g - arcs_[b].g);
+      if (norm2(h) == 0.0) continue;
+      for (const Vec3& w : pts_) {
+        detail::circle_cone(h, 0.0, w, arcs_[a].g, emit);
+        const Vec3 x = cross(h, cross(w, arcs_[a].g));
+        consider(x);
+        consider(-x);
+      }
+    }
+}
+
+void Solver::enumerate_constrained() {
+  constrained_pass_ = true;
+  const int k = g_.n_faces();
+  const int np = static_cast<int>(pts_.size()), na = static_cast<int>(arcs_.size());
+  const double c0 = v_min_, s = std::sqrt(std::max(0.0, 1.0 - c0 * c0));
+  auto emit = [this](const Vec3& n) { consider(n); };
+  for (int i = 0; i < k; ++i) {
+    const Vec3& fi = g_.face_normals[i];
+    for (int j = i + 1; j < k; ++j) detail::plane_plane_sphere(fi, c0, g_.face_normals[j], c0, emit);
+    for (int a = 0; a < np; ++a)
+      for (int b = a + 1; b < np; ++b) detail::plane_plane_sphere(fi, c0, pts_[a] - pts_[b], 0.0, emit);
+    for (int a = 0; a < na; ++a)
+      for (int b = a + 1; b < na; ++b)
+        detail::plane_plane_sphere(fi, c0, arcs_[a].g - arcs_[b].g, 0.0, emit);
+    for (const Vec3& w : pts_)
+      for (const Arc& arc : arcs_) detail::circle_cone(fi, c0, w, arc.g, emit);
+    // Single-site extrema along the circle: towards and away from each site's axis.
+    auto along = [&](const Vec3& axis) {
+      const Vec3 t = normalized(axis - dot(axis, fi) * fi);
+      if (norm2(t) == 0.0) return;
+      consider(c0 * fi + s * t);
+      consider(c0 * fi - s * t);
+    };
+    for (const Vec3& w : pts_) along(w);
+    for (const Arc& arc : arcs_) along(arc.g);
+  }
+}
+
+void Solver::search_plateaus() {
+  struct Circle {
+    Vec3 h;
+    double c0;
+  };
+  std::vector<Circle> circles;
+  const double tie = tol_.normality_tie;
+  const int np = static_cast<int>(pts_.size()), na = static_cast<int>(arcs_.size());
+  // Concentric sites: within the tie tolerance the distance along their common circle is
+  // constant to within the tie band, so every point found there is a genuine maximiser.
+  for (int a = 0; a < np; ++a)
+    for (int b = a + 1; b < np; ++b)
+      if (norm(pts_[a] + pts_[b]) <= tie) circles.push_back({pts_[a], 0.0});
+  for (const Vec3& w : pts_)
+    for (const Arc& arc : arcs_)
+      if (norm(w - arc.g) <= tie || norm(w + arc.g) <= tie) circles.push_back({w, std::sqrt(0.5)});
+  for (int a = 0; a < na; ++a)
+    for (int b = a + 1; b < na; ++b)
+      if (norm(arcs_[a].g - arcs_[b].g) <= tie || norm(arcs_[a].g + arcs_[b].g) <= tie) {
+        circles.push_back({arcs_[a].g, std::sin(best_c_)});
+        circles.push_back({arcs_[a].g, -std::sin(best_c_)});
+      }
+  const int k = g_.n_faces();
+  std::vector<double> ca(k), cb(k), cc(k);
+  for (const Circle& circ : circles) {
+    Vec3 e1, e2;
+    detail::orthonormal_complement(circ.h, &e1, &e2);
+    const double s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
+    // V along the circle is min_i (a_i + b_i cos t + c_i sin t); it peaks at a single
+    // term's peak or where two terms are equal.
+    for (int i = 0; i < k; ++i) {
+      const Vec3& f = g_.face_normals[i];
+      ca[i] = circ.c0 * dot(circ.h, f);
+      cb[i] = s * dot(e1, f);
+      cc[i] = s * dot(e2, f);
+    }
+    auto at = [&](double t) { consider(circ.c0 * circ.h + s * (std::cos(t) * e1 + std::sin(t) * e2)); };
+    for (int i = 0; i < k; ++i) {
+      at(std::atan2(cc[i], cb[i]));
+      for (int j = i + 1; j < k; ++j) {
+        const double p = cb[i] - cb[j], q = cc[i] - cc[j], r = ca[j] - ca[i];
+        const double amp = std::hypot(p, q);
+        if (!(amp > 0.0) || std::fabs(r) > amp) continue;
+        const double phi = std::atan2(q, p), da = std::acos(r / amp);
+        at(phi + da);
+        at(phi - da);
+      }
+    }
+  }
+}
+
+bool Solver::distinct(const std::vector<Maximizer>& maxima) {
+  for (std::size_t a = 0; a < maxima.size(); ++a)
+    for (std::size_t b = a + 1; b < maxima.size(); ++b)
+      if (angle_between(maxima[a].n, maxima[b].n) > kDistinctMaximizers) return true;
+  return false;
+}
+
+MostNormalResult Solver::run(bool constrain_visibility) {
+  MostNormalResult r;
+  const int k = g_.n_faces();
+  const MostVisibleResult mv = most_visible_normal(g_.face_normals.data(), k, tol_);
+  if (!mv.feasible) {
+    r.normal = mv.normal;
+    r.visibility = mv.visibility;
+    r.normality = fan_normality(g_, mv.normal);
+    r.status = NormalStatus::kNoVisibleDirection;
+    return r;
+  }
+  // Winding number of the link around n_MV: every triangle is seen from n_MV, so the
+  // projected link turns monotonically; one turn means a simple link.
+  double turn = 0.0;
+  for (int i = 0; i < k; ++i) {
+    const Vec3& a = g_.arc_start(i);
+    const Vec3& b = g_.arc_end(i);
+    turn += std::atan2(dot(mv.normal, cross(a, b)), dot(a, b) - dot(mv.normal, a) * dot(mv.normal, b));
+  }
+  if (std::lround(turn / (2.0 * M_PI)) != 1) {
+    r.normal = weighted_average_normal(g_, NormalMethod::kAngle);
+    r.visibility = fan_visibility(g_, r.normal);
+    r.normality = fan_normality(g_, r.normal);
+    r.status = NormalStatus::kDegenerateFan;
+    return r;
+  }
+  constrained_ = constrain_visibility;
+  v_min_ = 0.5 * mv.visibility;
+  const bool all_reflex = build_sites();
+  consider(mv.normal);
+  if (!pts_.empty() && all_reflex) {
+    // Convex solid corner: D(n) is the distance to the solid cone, largest at the
+    // antipode of the smallest cap holding the link vertices.
+    const MostVisibleResult cap = most_visible_normal(g_.dirs.data(), k, tol_);
+    if (cap.feasible) {
+      const double target = M_PI - std::atan2(std::sqrt(std::max(0.0, 1.0 - cap.visibility * cap.visibility)),
+                                              cap.visibility);
+      consider(-cap.normal);
+      if (best_c_ >= target - tol_.normality_tie && best_u_ <= best_c_ + tol_.normality_tie && !maxima_.empty()) {
+        const Maximizer& m = maxima_.back();
+        r.normal = m.n;
+        r.normality = m.d;
+        r.visibility = m.v;
+        r.status = NormalStatus::kOk;
+        r.n_candidates = n_candidates_;
+        return r;
+      }
+    }
+  }
+  if (!pts_.empty()) enumerate_unconstrained();
+  // Plateaus first: their feasible part may reach the unconstrained optimum.
+  bool non_unique = distinct(maxima_u_) || distinct(maxima_);
+  if (non_unique) search_plateaus();
+  if (constrained_ && best_u_ > best_c_ + tol_.normality_tie) enumerate_constrained();
+  const bool limited = constrained_ && best_u_ > best_c_ + tol_.normality_tie;
+  non_unique = non_unique || distinct(maxima_);
+  if (maxima_.empty()) {
+    r.normal = mv.normal;
+    r.visibility = mv.visibility;
+    r.normality = fan_normality(g_, mv.normal);
+    r.status = NormalStatus::kDegenerateFan;
+    return r;
+  }
+  const Maximizer* pick = &maxima_.front();
+  for (const Maximizer& m : maxima_)
+    if (m.d >= best_c_ - tol_.normality_tie && m.v > pick->v) pick = &m;
+  r.normal = pick->n;
+  r.normality = pick->d;
+  r.visibility = pick->v;
+  r.status = limited ? NormalStatus::kVisibilityConstrained
+                     : (non_unique ? NormalStatus::kNonUnique : NormalStatus::kOk);
+  r.n_candidates = n_candidates_;
+  return r;
+}
+
+}  // namespace
+
+MostNormalResult most_normal_normal(const FanGeometry& g, const Tolerances& tol, bool constrain_visibility) {
+  Solver solver(g, tol);
+  return solver.run(constrain_visibility);
+}
+
+}  // namespace blayer

@@ -1,0 +1,234 @@
+#include "blayer/normals/most_visible.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace blayer {
+
+namespace {
+
+// Slack of the supporting-plane and multiplier tests. Entries are products of unit
+// vectors rounded at ~1e-16; 1e-13 leaves a thousandfold margin, and a support accepted
+// within it moves V* by at most ~1e-13, below the 1e-12 accuracy promised for V*.
+constexpr double kSupportSlack = 1e-13;
+
+// Relative pivot below which a Gram system is singular (affinely dependent points): the
+// entries carry ~1e-16 rounding, so a relative determinant of 1e-14 has lost all but two
+// digits.
+constexpr double kSingularGram = 1e-14;
+
+constexpr int kMaxWolfeSteps = 64;
+
+// Min-norm point of the affine hull of m <= 4 points: weights alpha (sum 1) with
+// x = sum alpha_i P_i. Returns false when the points are affinely dependent.
+bool affine_min_norm(const Vec3* const* pts, int m, double* alpha) {
+  if (m == 1) {
+    alpha[0] = 1.0;
+    return true;
+  }
+  const int n = m - 1;
+  Vec3 d[3];
+  for (int i = 0; i < n; ++i) d[i] = *pts[i + 1] - *pts[0];
+  double a[3][4];
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) a[i][j] = dot(d[i], d[j]);
+    a[i][n] = -dot(d[i], *pts[0]);
+  }
+  double diag = 1.0;
+  for (int i = 0; i < n; ++i) diag *= a[i][i];
+  if (!(diag > 0.0)) return false;
+  // Gaussian elimination with partial pivoting on the n x n normal equations.
+  double det = 1.0;
+  for (int c = 0; c < n; ++c) {
+    int piv = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::fabs(a[r][c]) > std::fabs(a[piv][c])) piv = r;
+    if (piv != c)
+      for (int j = 0; j <= n; ++j) std::swap(a[c][j], a[piv][j]);
+    det *= a[c][c];
+    if (a[c][c] == 0.0) return false;
+    for (int r = c + 1; r < n; ++r) {
+      const double fct = a[r][c] / a[c][c];
+      for (int j = c; j <= n; ++j) a[r][j] -= fct * a[c][j];
+    }
+  }
+  if (std::fabs(det) <= kSingularGram * diag) return false;
+  double beta[3];
+  for (int r = n - 1; r >= 0; --r) {
+    double s = a[r][n];
+    for (int j = r + 1; j < n; ++j) s -= a[r][j] * beta[j];
+    beta[r] = s / a[r][r];
+  }
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    alpha[i + 1] = beta[i];
+    sum += beta[i];
+  }
+  alpha[0] = 1.0 - sum;
+  return true;
+}
+
+double min_dot(const Vec3* f, int k, const Vec3& x) {
+  double v = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < k; ++j) v = std::min(v, dot(f[j], x));
+  return v;
+}
+
+bool certified(const Vec3* f, int k, const Vec3& q) {
+  const double qq = norm2(q);
+  for (int j = 0; j < k; ++j)
+    if (dot(f[j], q) < qq - kSupportSlack) return false;
+  return true;
+}
+
+MostVisibleResult finish_feasible(const Vec3* f, int k, const Vec3& q, int support, const Tolerances& tol) {
+  const double len = norm(q);
+  if (!(len >= tol.min_visibility)) return best_margin_direction(f, k);
+  MostVisibleResult r;
+  r.normal = q / len;
+  // V* = |q*| in exact arithmetic; the directly evaluated minimum is what callers see.
+  r.visibility = min_dot(f, k, r.normal);
+  r.feasible = r.visibility >= tol.min_visibility;
+  r.support_size = support;
+  return r;
+}
+
+}  // namespace
+
+MostVisibleResult best_margin_direction(const Vec3* f, int k) {
+  MostVisibleResult best;
+  best.visibility = -std::numeric_limits<double>::infinity();
+  auto consider = [&](const Vec3& c) {
+    const double len = norm(c);
+    if (!(len > 0.0)) return;
+    for (const Vec3& n : {c / len, -c / len}) {
+      const double v = min_dot(f, k, n);
+      if (v > best.visibility) {
+        best.visibility = v;
+        best.normal = n;
+      }
+    }
+  };
+  for (int a = 0; a < k; ++a) {
+    consider(f[a]);
+    for (int b = a + 1; b < k; ++b) {
+      consider(f[a] + f[b]);
+      // A great circle through both normals: the margin directions of a flat hull.
+      consider(cross(f[a], f[b]));
+      for (int c = b + 1; c < k; ++c) consider(cross(f[b] - f[a], f[c] - f[a]));
+    }
+  }
+  if (k == 1) best.visibility = 1.0;
+  best.feasible = false;
+  return best;
+}
+
+MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k, const Tolerances& tol) {
+  std::vector<Vec3> u;
+  u.reserve(k);
+  for (int i = 0; i < k; ++i) {
+    bool dup = false;
+    for (const Vec3& w : u) dup |= norm(f[i] - w) < tol.duplicate_normal;
+    if (!dup) u.push_back(f[i]);
+  }
+  const int m = static_cast<int>(u.size());
+  double best = std::numeric_limits<double>::infinity();
+  Vec3 best_q{0.0, 0.0, 0.0};
+  int best_support = 0;
+  auto try_support = [&](std::initializer_list<int> s) {
+    const Vec3* pts[3];
+    int n = 0;
+    for (int i : s) pts[n++] = &u[i];
+    double lambda[3];
+    if (!affine_min_norm(pts, n, lambda)) return;
+    Vec3 q{0.0, 0.0, 0.0};
+    for (int i = 0; i < n; ++i) {
+      if (lambda[i] < -kSupportSlack) return;
+      q += lambda[i] * *pts[i];
+    }
+    const double qq = norm2(q);
+    if (qq >= best) return;
+    if (!certified(u.data(), m, q)) return;
+    best = qq;
+    best_q = q;
+    best_support = n;
+  };
+  for (int a = 0; a < m; ++a) {
+    try_support({a});
+    for (int b = a + 1; b < m; ++b) {
+      try_support({a, b});
+      for (int c = b + 1; c < m; ++c) try_support({a, b, c});
+    }
+  }
+  if (best_support == 0) return best_margin_direction(f, k);
+  return finish_feasible(f, k, best_q, best_support, tol);
+}
+
+MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& tol) {
+  int s[4] = {0, 0, 0, 0};
+  double w[4] = {1.0, 0.0, 0.0, 0.0};
+  int m = 1;
+  Vec3 x = f[0];
+  for (int step = 0; step < kMaxWolfeSteps; ++step) {
+    int j = 0;
+    double fx = dot(f[0], x);
+    for (int l = 1; l < k; ++l) {
+      const double d = dot(f[l], x);
+      if (d < fx) {
+        fx = d;
+        j = l;
+      }
+    }
+    const double xx = norm2(x);
+    if (fx >= xx - kSupportSlack) return finish_feasible(f, k, x, m, tol);
+    if (xx < tol.min_visibility * tol.min_visibility) return best_margin_direction(f, k);
+    bool in_s = false;
+    for (int i = 0; i < m; ++i) in_s |= s[i] == j;
+    if (in_s || m == 4) break;
+    s[m] = j;
+    w[m] = 0.0;
+    ++m;
+    for (;;) {
+      const Vec3* pts[4];
+      for (int i = 0; i < m; ++i) pts[i] = &f[s[i]];
+      double alpha[4];
+      if (!affine_min_norm(pts, m, alpha)) return most_visible_by_enumeration(f, k, tol);
+      bool positive = true;
+      for (int i = 0; i < m; ++i) positive &= alpha[i] > 0.0;
+      if (positive) {
+        for (int i = 0; i < m; ++i) w[i] = alpha[i];
+        break;
+      }
+      // Move from w towards alpha until the first weight reaches zero, then drop it.
+      double theta = 1.0;
+      int drop = -1;
+      for (int i = 0; i < m; ++i)
+        if (alpha[i] <= 0.0) {
+          const double t = w[i] / (w[i] - alpha[i]);
+          if (t < theta || drop < 0) {
+            theta = t;
+            drop = i;
+          }
+        }
+      for (int i = 0; i < m; ++i) w[i] = (1.0 - theta) * w[i] + theta * alpha[i];
+      w[drop] = 0.0;
+      int n = 0;
+      for (int i = 0; i < m; ++i)
+        if (w[i] > 0.0) {
+          s[n] = s[i];
+          w[n] = w[i];
+          ++n;
+        }
+      m = n;
+      if (m == 0) return most_visible_by_enumeration(f, k, tol);
+    }
+    x = Vec3{0.0, 0.0, 0.0};
+    for (int i = 0; i < m; ++i) x += w[i] * f[s[i]];
+    // A full-dimensional simplex with positive weights contains the origin.
+    if (m == 4) return best_margin_direction(f, k);
+  }
+  return most_visible_by_enumeration(f, k, tol);
+}
+
+}  // namespace blayer
