@@ -1,0 +1,97 @@
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "blayer/quality/mesh_check.h"
+
+namespace blayer {
+
+namespace {
+
+void require_matching(const VolumeMesh& mesh, const MeshCheckReport& r, const char* where) {
+  if (r.validity.size() != mesh.n_cells())
+    throw std::invalid_argument(std::string(where) + ": the report has " + std::to_string(r.validity.size()) +
+                                " cells, the mesh " + std::to_string(mesh.n_cells()) + "; check this mesh first");
+}
+
+void set_array(std::vector<DataArray>& arrays, DataArray a) {
+  for (DataArray& existing : arrays)
+    if (existing.name == a.name) {
+      existing = std::move(a);
+      return;
+    }
+  arrays.push_back(std::move(a));
+}
+
+// The quality arrays of the cells `ids` (all cells when null).
+std::vector<DataArray> quality_arrays(const MeshCheckReport& r, const std::vector<std::size_t>* ids) {
+  const std::size_t n = ids ? ids->size() : r.validity.size();
+  auto id = [&](std::size_t i) { return ids ? (*ids)[i] : i; };
+  std::vector<DataArray> out;
+  for (std::size_t k = 0; k < kCheckMetricNames.size(); ++k) {
+    DataArray a{kCheckMetricNames[k], 1, false, std::vector<double>(n)};
+    for (std::size_t i = 0; i < n; ++i) a.values[i] = r.metrics[k][id(i)];
+    out.push_back(std::move(a));
+  }
+  DataArray validity{"validity", 1, true, std::vector<double>(n)};
+  DataArray flags{"check_flags", 1, true, std::vector<double>(n)};
+  for (std::size_t i = 0; i < n; ++i) {
+    validity.values[i] = static_cast<double>(r.validity[id(i)]);
+    flags.values[i] = r.flags[id(i)];
+  }
+  out.push_back(std::move(validity));
+  out.push_back(std::move(flags));
+  return out;
+}
+
+}  // namespace
+
+void add_quality_arrays(VolumeMesh& mesh, const MeshCheckReport& report) {
+  require_matching(mesh, report, "add_quality_arrays");
+  for (DataArray& a : quality_arrays(report, nullptr)) set_array(mesh.cell_data, std::move(a));
+}
+
+void add_quality_arrays(VolumeMesh& mesh) { add_quality_arrays(mesh, check_volume_mesh(mesh)); }
+
+VolumeMesh extract_bad_cells(const VolumeMesh& mesh, const MeshCheckReport& report) {
+  require_matching(mesh, report, "extract_bad_cells");
+  std::vector<std::size_t> bad;
+  for (std::size_t c = 0; c < mesh.n_cells(); ++c)
+    if (report.cell_fails(c)) bad.push_back(c);
+
+  VolumeMesh out;
+  std::vector<std::int64_t> new_id(mesh.points.size(), -1);
+  std::vector<std::size_t> old_point;
+  for (std::size_t c : bad) {
+    std::int64_t nodes[8];
+    const int k = corner_count(mesh.cell_types[c]);
+    for (int i = 0; i < k; ++i) {
+      const std::int64_t p = mesh.connectivity[mesh.offsets[c] + i];
+      if (new_id[p] < 0) {
+        new_id[p] = static_cast<std::int64_t>(out.points.size());
+        out.points.push_back(mesh.points[p]);
+        old_point.push_back(static_cast<std::size_t>(p));
+      }
+      nodes[i] = new_id[p];
+    }
+    out.add_cell(mesh.cell_types[c], nodes);
+  }
+
+  auto subset = [](const DataArray& a, const std::vector<std::size_t>& ids) {
+    DataArray s{a.name, a.n_components, a.integer, {}};
+    s.values.reserve(ids.size() * a.n_components);
+    for (std::size_t i : ids)
+      for (int k = 0; k < a.n_components; ++k) s.values.push_back(a.values[i * a.n_components + k]);
+    return s;
+  };
+  for (const DataArray& a : mesh.point_data)
+    if (a.values.size() == mesh.points.size() * a.n_components) out.point_data.push_back(subset(a, old_point));
+  for (const DataArray& a : mesh.cell_data)
+    if (a.values.size() == mesh.n_cells() * a.n_components) out.cell_data.push_back(subset(a, bad));
+  for (DataArray& a : quality_arrays(report, &bad)) set_array(out.cell_data, std::move(a));
+  DataArray original{"original_cell_id", 1, true, std::vector<double>(bad.begin(), bad.end())};
+  set_array(out.cell_data, std::move(original));
+  return out;
+}
+
+}  // namespace blayer

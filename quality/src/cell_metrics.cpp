@@ -1,0 +1,219 @@
+#include "blayer/quality/cell_metrics.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "cell_faces.h"
+
+namespace blayer {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRadToDeg = 180.0 / kPi;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Corner tets (node, then its three edge-neighbours in positive order). These are the
+// corner entries of cell_validity.cpp's validity tets.
+constexpr std::array<int, 4> kTetCorners[] = {{0, 1, 2, 3}, {1, 2, 0, 3}, {2, 0, 1, 3}, {3, 0, 2, 1}};
+constexpr std::array<int, 4> kPyramidCorners[] = {{0, 1, 3, 4}, {1, 2, 0, 4}, {2, 3, 1, 4}, {3, 0, 2, 4}};
+constexpr std::array<int, 4> kWedgeCorners[] = {{0, 2, 1, 3}, {1, 0, 2, 4}, {2, 1, 0, 5},
+                                                {3, 4, 5, 0}, {4, 5, 3, 1}, {5, 3, 4, 2}};
+constexpr std::array<int, 4> kHexCorners[] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
+                                              {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
+
+double triple(const Vec3& a, const Vec3& b, const Vec3& c) { return dot(a, cross(b, c)); }
+
+// det[e1,e2,e3] / (|e1||e2||e3|), 0 when an edge has zero length.
+double normalized_jacobian(const Vec3& e1, const Vec3& e2, const Vec3& e3) {
+  const double lengths = norm(e1) * norm(e2) * norm(e3);
+  return lengths > 0.0 ? triple(e1, e2, e3) / lengths : 0.0;
+}
+
+template <std::size_t N>
+double min_corner_jacobian(const std::array<int, 4> (&corners)[N], const Vec3* p) {
+  double m = std::numeric_limits<double>::infinity();
+  for (const std::array<int, 4>& c : corners) {
+    const Vec3& o = p[c[0]];
+    m = std::min(m, normalized_jacobian(p[c[1]] - o, p[c[2]] - o, p[c[3]] - o));
+  }
+  return m;
+}
+
+double hex_centre_jacobian(const Vec3* p) {
+  const Vec3 x1 = (p[1] - p[0]) + (p[2] - p[3]) + (p[5] - p[4]) + (p[6] - p[7]);
+  const Vec3 x2 = (p[3] - p[0]) + (p[2] - p[1]) + (p[7] - p[4]) + (p[6] - p[5]);
+  const Vec3 x3 = (p[4] - p[0]) + (p[5] - p[1]) + (p[6] - p[2]) + (p[7] - p[3]);
+  return normalized_jacobian(x1, x2, x3);
+}
+
+double scaled_jacobian(CellType t, const Vec3* p) {
+  double j = 0.0;
+  switch (t) {
+    case CellType::kTet: j = std::sqrt(2.0) * min_corner_jacobian(kTetCorners, p); break;
+    case CellType::kPyramid: j = std::sqrt(2.0) * min_corner_jacobian(kPyramidCorners, p); break;
+    case CellType::kWedge: j = 2.0 / std::sqrt(3.0) * min_corner_jacobian(kWedgeCorners, p); break;
+    case CellType::kHex: j = std::min(min_corner_jacobian(kHexCorners, p), hex_centre_jacobian(p)); break;
+  }
+  return std::min(j, 1.0);
+}
+
+// Equiangle skewness of a polygon face with n = 3 or 4 nodes.
+double face_skewness(const Vec3* p, const detail::FaceDef& f) {
+  const double ideal = f.n == 3 ? 60.0 : 90.0;
+  double lo = 180.0, hi = 0.0;
+  for (int i = 0; i < f.n; ++i) {
+    const Vec3& a = p[f.v[(i + f.n - 1) % f.n]];
+    const Vec3& b = p[f.v[i]];
+    const Vec3& c = p[f.v[(i + 1) % f.n]];
+    const Vec3 u = a - b, w = c - b;
+    // A zero-length edge makes the face collapsed: worst skew.
+    if (norm2(u) == 0.0 || norm2(w) == 0.0) return 1.0;
+    const double angle = angle_between(u, w) * kRadToDeg;
+    lo = std::min(lo, angle);
+    hi = std::max(hi, angle);
+  }
+  return std::clamp(std::max((hi - ideal) / (180.0 - ideal), (ideal - lo) / ideal), 0.0, 1.0);
+}
+
+// Largest angle between the normals of the two triangles of either diagonal split.
+double quad_warp_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double split_ac = angle_between(cross(b - a, c - a), cross(c - a, d - a));
+  const double split_bd = angle_between(cross(c - b, d - b), cross(d - b, a - b));
+  return std::max(split_ac, split_bd) * kRadToDeg;
+}
+
+double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return triple(b - a, c - a, d - a) / 6.0;
+}
+
+// det J of the trilinear wedge map at triangle barycentre and height parameter z in
+// [0,1]: the integrand is linear in the triangle coordinates and quadratic in z, so the
+// centroid rule times two-point Gauss in z is exact.
+double wedge_volume(const Vec3* p) {
+  const double g = 0.5 / std::sqrt(3.0);
+  double v = 0.0;
+  for (double z : {0.5 - g, 0.5 + g}) {
+    // Position x(r,s,z) = (1-z) * B(r,s) + z * T(r,s), B and T linear on the caps with
+    // vertex 0 at (r,s) = (0,0), vertex 1 at (1,0), vertex 2 at (0,1).
+    const Vec3 dr = (1.0 - z) * (p[1] - p[0]) + z * (p[4] - p[3]);
+    const Vec3 ds = (1.0 - z) * (p[2] - p[0]) + z * (p[5] - p[3]);
+    const Vec3 dz = ((p[3] + p[4] + p[5]) - (p[0] + p[1] + p[2])) / 3.0;
+    // The VTK wedge's base winding points away from the top, so (dr, ds, dz) is
+    // left-handed in a valid wedge: negate.
+    v += -triple(dr, ds, dz) * 0.5 * 0.5;  // reference triangle area 1/2, Gauss weight 1/2
+  }
+  return v;
+}
+
+// Trilinear hex: det J has degree 2 in each coordinate, so 2x2x2 Gauss is exact.
+double hex_volume(const Vec3* p) {
+  const double g = 0.5 / std::sqrt(3.0);
+  const double q[2] = {0.5 - g, 0.5 + g};
+  double v = 0.0;
+  for (double r : q)
+    for (double s : q)
+      for (double t : q) {
+        // Nodes 0..3 on t = 0 counter-clockwise from (0,0), 4..7 above them.
+        const Vec3 dr = (1 - s) * (1 - t) * (p[1] - p[0]) + s * (1 - t) * (p[2] - p[3]) +
+                        (1 - s) * t * (p[5] - p[4]) + s * t * (p[6] - p[7]);
+        const Vec3 ds = (1 - r) * (1 - t) * (p[3] - p[0]) + r * (1 - t) * (p[2] - p[1]) +
+                        (1 - r) * t * (p[7] - p[4]) + r * t * (p[6] - p[5]);
+        const Vec3 dt = (1 - r) * (1 - s) * (p[4] - p[0]) + r * (1 - s) * (p[5] - p[1]) +
+                        r * s * (p[6] - p[2]) + (1 - r) * s * (p[7] - p[3]);
+        v += triple(dr, ds, dt) / 8.0;
+      }
+  return v;
+}
+
+double pyramid_volume(const Vec3* p) {
+  const double split02 = tet_volume(p[0], p[1], p[2], p[4]) + tet_volume(p[0], p[2], p[3], p[4]);
+  const double split13 = tet_volume(p[0], p[1], p[3], p[4]) + tet_volume(p[1], p[2], p[3], p[4]);
+  return 0.5 * (split02 + split13);
+}
+
+// Unit normal of a cap (3 or 4 nodes in the given order), right-hand rule.
+Vec3 cap_normal(const Vec3* p, const int* v, int n) {
+  if (n == 3) return normalized(cross(p[v[1]] - p[v[0]], p[v[2]] - p[v[0]]));
+  return normalized(cross(p[v[2]] - p[v[0]], p[v[3]] - p[v[1]]));
+}
+
+// Column metrics shared by wedges (n = 3) and hexes (n = 4). bottom/top list the cap
+// nodes so that column edge i runs from bottom[i] to top[i] and the right-hand normal
+// of both lists points from the bottom cap to the top cap.
+void column_metrics(const Vec3* p, const int* bottom, const int* top, int n, CellMetrics* m) {
+  const Vec3 n_bottom = cap_normal(p, bottom, n);
+  const Vec3 n_top = cap_normal(p, top, n);
+  double cap_edges = 0.0, column_edges = 0.0, worst = 0.0;
+  for (int i = 0; i < n; ++i) {
+    cap_edges += norm(p[bottom[(i + 1) % n]] - p[bottom[i]]) + norm(p[top[(i + 1) % n]] - p[top[i]]);
+    const Vec3 e = p[top[i]] - p[bottom[i]];
+    column_edges += norm(e);
+    worst = std::max({worst, angle_between(e, n_bottom), angle_between(e, n_top)});
+  }
+  const double cap_mean = cap_edges / (2 * n), column_mean = column_edges / n;
+  m->aspect_ratio = column_mean > 0.0 ? cap_mean / column_mean : std::numeric_limits<double>::infinity();
+  m->orthogonality_deg = worst * kRadToDeg;
+}
+
+void edge_ratio(CellType t, const Vec3* p, CellMetrics* m) {
+  const detail::CellFaces& cf = detail::cell_faces(t);
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (int f = 0; f < cf.n_faces; ++f) {
+    const detail::FaceDef& fd = cf.faces[f];
+    for (int i = 0; i < fd.n; ++i) {
+      const double l = norm(p[fd.v[(i + 1) % fd.n]] - p[fd.v[i]]);
+      lo = std::min(lo, l);
+      hi = std::max(hi, l);
+    }
+  }
+  m->aspect_ratio = lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+double cell_volume(CellType type, const Vec3* p) {
+  switch (type) {
+    case CellType::kTet: return tet_volume(p[0], p[1], p[2], p[3]);
+    case CellType::kPyramid: return pyramid_volume(p);
+    case CellType::kWedge: return wedge_volume(p);
+    case CellType::kHex: return hex_volume(p);
+  }
+  return 0.0;
+}
+
+CellMetrics compute_cell_metrics(CellType type, const Vec3* p) {
+  CellMetrics m;
+  m.scaled_jacobian = scaled_jacobian(type, p);
+  m.volume = cell_volume(type, p);
+
+  const detail::CellFaces& cf = detail::cell_faces(type);
+  double skew = 0.0, warp = 0.0;
+  for (int f = 0; f < cf.n_faces; ++f) {
+    const detail::FaceDef& fd = cf.faces[f];
+    const bool is_cap = f == cf.bottom_cap || f == cf.top_cap;
+    if (type != CellType::kWedge || is_cap) skew = std::max(skew, face_skewness(p, fd));
+    if (fd.n == 4) warp = std::max(warp, quad_warp_deg(p[fd.v[0]], p[fd.v[1]], p[fd.v[2]], p[fd.v[3]]));
+  }
+  m.skewness = skew;
+  m.twist_deg = warp;
+
+  if (type == CellType::kWedge) {
+    // (0,2,1) and (3,5,4) both have right-hand normals pointing bottom to top.
+    static constexpr int kBottom[3] = {0, 2, 1};
+    static constexpr int kTop[3] = {3, 5, 4};
+    column_metrics(p, kBottom, kTop, 3, &m);
+  } else if (type == CellType::kHex) {
+    static constexpr int kBottom[4] = {0, 1, 2, 3};
+    static constexpr int kTop[4] = {4, 5, 6, 7};
+    column_metrics(p, kBottom, kTop, 4, &m);
+  } else {
+    edge_ratio(type, p, &m);
+    m.orthogonality_deg = kNaN;
+  }
+  return m;
+}
+
+}  // namespace blayer

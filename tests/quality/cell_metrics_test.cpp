@@ -1,0 +1,165 @@
+#include "blayer/quality/cell_metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "blayer/quality/cell_validity.h"
+#include "blayer/quality/orient3d.h"
+#include "test_cells.h"
+
+namespace blayer {
+namespace {
+
+// Metrics are a few dozen flops from exact inputs: 1e-12 absolute (on values of order
+// 1 to 100) leaves room for rounding while catching any formula error.
+constexpr double kMetricTol = 1e-12;
+constexpr double kPi = 3.14159265358979323846;
+
+CellMetrics metrics(CellType t, const std::vector<Vec3>& p) { return compute_cell_metrics(t, p.data()); }
+
+// Right prism over a unit equilateral triangle, height h, VTK wedge order.
+std::vector<Vec3> equilateral_prism(double h) {
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0.5, std::sqrt(3.0) / 2, 0};
+  const Vec3 up{0, 0, h};
+  return {a, c, b, a + up, c + up, b + up};
+}
+
+// Top cap rotated by `angle` radians about the vertical axis through its centroid.
+std::vector<Vec3> twisted(std::vector<Vec3> p, double angle) {
+  const Vec3 centre = (p[3] + p[4] + p[5]) / 3.0;
+  for (int i = 3; i < 6; ++i) {
+    const Vec3 d = p[i] - centre;
+    p[i] = centre + Vec3{std::cos(angle) * d[0] - std::sin(angle) * d[1],
+                         std::sin(angle) * d[0] + std::cos(angle) * d[1], d[2]};
+  }
+  return p;
+}
+
+TEST(CellMetrics, RightPrismHasZeroOrthogonalityAndItsCapToHeightAspectRatio) {
+  const double h = 0.1;
+  const CellMetrics m = metrics(CellType::kWedge, test::right_prism(h));
+  EXPECT_NEAR(m.orthogonality_deg, 0.0, kMetricTol);
+  EXPECT_NEAR(m.twist_deg, 0.0, kMetricTol);
+  // Caps with legs 1, 1 and hypotenuse sqrt 2; columns of length h.
+  EXPECT_NEAR(m.aspect_ratio, (2.0 + std::sqrt(2.0)) / 3.0 / h, kMetricTol);
+  EXPECT_NEAR(m.volume, 0.5 * h, kMetricTol);
+  // Right isosceles caps: angles 90, 45, 45 degrees -> (90-60)/120 = (60-45)/60 = 0.25.
+  EXPECT_NEAR(m.skewness, 0.25, kMetricTol);
+  // Worst corner is a 45-degree cap corner with an orthogonal column: sin 45 * 2/sqrt 3.
+  EXPECT_NEAR(m.scaled_jacobian, std::sqrt(0.5) * 2.0 / std::sqrt(3.0), kMetricTol);
+}
+
+TEST(CellMetrics, EquilateralRightPrismIsIdeal) {
+  const CellMetrics m = metrics(CellType::kWedge, equilateral_prism(2.0));
+  EXPECT_NEAR(m.scaled_jacobian, 1.0, kMetricTol);
+  EXPECT_NEAR(m.skewness, 0.0, kMetricTol);
+  EXPECT_NEAR(m.aspect_ratio, 0.5, kMetricTol);
+  EXPECT_NEAR(m.volume, std::sqrt(3.0) / 4.0 * 2.0, kMetricTol);
+}
+
+TEST(CellMetrics, ShearedPrismOrthogonalityIsTheShearAngle) {
+  const double h = 0.2, shift = 0.2 * std::tan(30.0 * kPi / 180.0);
+  std::vector<Vec3> p = test::right_prism(h);
+  for (int i = 3; i < 6; ++i) p[i][0] += shift;
+  const CellMetrics m = metrics(CellType::kWedge, p);
+  EXPECT_NEAR(m.orthogonality_deg, 30.0, 1e-10);
+  EXPECT_NEAR(m.twist_deg, 0.0, kMetricTol);   // shear keeps the quads planar
+  EXPECT_NEAR(m.volume, 0.5 * h, kMetricTol);  // and the volume
+  EXPECT_EQ(cell_validity(CellType::kWedge, p.data()), Validity::kValid);
+}
+
+TEST(CellMetrics, TiltedTopCapCountsInOrthogonality) {
+  // Column edges vertical, top cap tilted by raising node 5 (above b = (1,0,0)):
+  // the top normal leans by atan(rise) from the columns.
+  std::vector<Vec3> p = test::right_prism(1.0);
+  p[5][2] += 0.5;
+  const CellMetrics m = metrics(CellType::kWedge, p);
+  EXPECT_NEAR(m.orthogonality_deg, std::atan(0.5) * 180.0 / kPi, 1e-10);
+}
+
+TEST(CellMetrics, TwistedPrismHasWarpedQuadsAndTheTrilinearVolume) {
+  const double angle = 10.0 * kPi / 180.0;
+  const std::vector<Vec3> p = twisted(equilateral_prism(1.0), angle);
+  const CellMetrics m = metrics(CellType::kWedge, p);
+  EXPECT_GT(m.twist_deg, 1.0);
+  EXPECT_EQ(cell_validity(CellType::kWedge, p.data()), Validity::kValid);
+  // The cross-section at height z is the cap mapped by (1-z) I + z R(angle), whose
+  // determinant (1-z)^2 + 2z(1-z)cos(angle) + z^2 integrates to (2 + cos(angle)) / 3.
+  EXPECT_NEAR(m.volume, std::sqrt(3.0) / 4.0 * (2.0 + std::cos(angle)) / 3.0, kMetricTol);
+}
+
+TEST(CellValidity, HalfTurnTwistedPrismIsInvertedAlthoughEveryCapTetIsPositive) {
+  const std::vector<Vec3> p = twisted(equilateral_prism(1.0), kPi);
+  // Each cap lies on the right side of each node of the other cap ...
+  EXPECT_EQ(orient3d_sign(p[0], p[2], p[1], p[3]), 1);
+  EXPECT_EQ(orient3d_sign(p[0], p[2], p[1], p[4]), 1);
+  EXPECT_EQ(orient3d_sign(p[0], p[2], p[1], p[5]), 1);
+  EXPECT_EQ(orient3d_sign(p[3], p[4], p[5], p[0]), 1);
+  EXPECT_EQ(orient3d_sign(p[3], p[4], p[5], p[1]), 1);
+  EXPECT_EQ(orient3d_sign(p[3], p[4], p[5], p[2]), 1);
+  // ... but the column is folded, which the cap-edge tets see.
+  EXPECT_EQ(cell_validity(CellType::kWedge, p.data()), Validity::kInverted);
+  EXPECT_FALSE(prism_is_valid(p.data()));
+  // The corner Jacobians are the cap tets, so the scaled Jacobian stays positive here;
+  // the twist metric shows the fold.
+  const CellMetrics m = metrics(CellType::kWedge, p);
+  EXPECT_GT(m.scaled_jacobian, 0.0);
+  EXPECT_GT(m.twist_deg, 90.0);
+}
+
+TEST(CellMetrics, UnitCubeIsIdealAndRegularTetScoresOne) {
+  const CellMetrics cube = metrics(CellType::kHex, test::unit_hex());
+  EXPECT_NEAR(cube.scaled_jacobian, 1.0, kMetricTol);
+  EXPECT_NEAR(cube.skewness, 0.0, kMetricTol);
+  EXPECT_NEAR(cube.aspect_ratio, 1.0, kMetricTol);
+  EXPECT_NEAR(cube.orthogonality_deg, 0.0, kMetricTol);
+  EXPECT_NEAR(cube.volume, 1.0, kMetricTol);
+  const std::vector<Vec3> regular{{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  // (0,1,2) of this tet has its normal toward node 3 only after a swap.
+  const std::vector<Vec3> tet{regular[0], regular[2], regular[1], regular[3]};
+  ASSERT_EQ(cell_validity(CellType::kTet, tet.data()), Validity::kValid);
+  const CellMetrics t = metrics(CellType::kTet, tet);
+  EXPECT_NEAR(t.scaled_jacobian, 1.0, kMetricTol);
+  EXPECT_NEAR(t.skewness, 0.0, kMetricTol);
+  EXPECT_NEAR(t.aspect_ratio, 1.0, kMetricTol);
+  EXPECT_NEAR(t.volume, 8.0 / 3.0, kMetricTol);
+  EXPECT_TRUE(std::isnan(t.orthogonality_deg));
+}
+
+TEST(CellMetrics, EqualEdgePyramidScoresOneAndHasItsVolume) {
+  const double h = std::sqrt(0.5);
+  const CellMetrics m = metrics(CellType::kPyramid, test::unit_pyramid(h));
+  EXPECT_NEAR(m.scaled_jacobian, 1.0, kMetricTol);
+  EXPECT_NEAR(m.aspect_ratio, 1.0, kMetricTol);
+  EXPECT_NEAR(m.volume, h / 3.0, kMetricTol);
+  EXPECT_NEAR(m.skewness, 0.0, kMetricTol);
+}
+
+TEST(CellMetrics, MirroredCellsHaveNegativeJacobianAndVolume) {
+  for (const auto& [t, p] : std::vector<std::pair<CellType, std::vector<Vec3>>>{
+           {CellType::kTet, test::unit_tet()},
+           {CellType::kPyramid, test::unit_pyramid()},
+           {CellType::kWedge, test::right_prism()},
+           {CellType::kHex, test::unit_hex()}}) {
+    const CellMetrics m = metrics(t, test::mirrored(p));
+    EXPECT_LT(m.scaled_jacobian, 0.0) << cell_type_name(t);
+    EXPECT_LT(m.volume, 0.0) << cell_type_name(t);
+  }
+}
+
+TEST(CellMetrics, WarpedHexFaceTwistIsTheAngleBetweenItsSplitNormals) {
+  std::vector<Vec3> p = test::unit_hex();
+  p[6][2] += 0.5;  // lift one top corner: top face (4,5,6,7) warps
+  const CellMetrics m = metrics(CellType::kHex, p);
+  // Split along 4-6: normals of (4,5,6) = (0,-0.5,1) and (4,6,7) = (-0.5,0,1); the side
+  // faces stay planar (x = 1 and y = 1).
+  const double split46 = std::acos(1.0 / 1.25) * 180.0 / kPi;
+  // Split along 5-7: normals of (5,6,7) = (-0.5,-0.5,1) and (5,7,4) = (0,0,1).
+  const double split57 = std::acos(1.0 / std::sqrt(1.5)) * 180.0 / kPi;
+  EXPECT_NEAR(m.twist_deg, std::max(split46, split57), 1e-10);
+}
+
+}  // namespace
+}  // namespace blayer

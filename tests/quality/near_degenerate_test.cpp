@@ -1,0 +1,106 @@
+// Near-degenerate prisms whose validity only exact arithmetic decides.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "blayer/quality/cell_validity.h"
+#include "blayer/quality/orient3d.h"
+#include "test_cells.h"
+
+namespace blayer {
+namespace {
+
+using I128 = __int128;
+
+// Exact sign of det[b-a, c-a, d-a] for integer-valued points whose differences stay
+// below 2^42 (triple products below 2^126).
+int exact_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  I128 u[3], v[3], w[3];
+  for (int i = 0; i < 3; ++i) {
+    const auto ai = static_cast<std::int64_t>(a[i]);
+    u[i] = static_cast<std::int64_t>(b[i]) - ai;
+    v[i] = static_cast<std::int64_t>(c[i]) - ai;
+    w[i] = static_cast<std::int64_t>(d[i]) - ai;
+  }
+  const I128 det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
+                   u[2] * (v[0] * w[1] - v[1] * w[0]);
+  return det > 0 ? 1 : (det < 0 ? -1 : 0);
+}
+
+int double_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const double det = dot(b - a, cross(c - a, d - a));
+  return det > 0 ? 1 : (det < 0 ? -1 : 0);
+}
+
+// Classifies with a given sign function over the wedge's validity tets.
+template <typename Sign>
+Validity classify(const std::vector<Vec3>& p, Sign sign) {
+  std::size_t n = 0;
+  const std::array<int, 4>* tets = validity_tets(CellType::kWedge, &n);
+  bool flat = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int s = sign(p[tets[i][0]], p[tets[i][1]], p[tets[i][2]], p[tets[i][3]]);
+    if (s < 0) return Validity::kInverted;
+    flat = flat || s == 0;
+  }
+  return flat ? Validity::kFlat : Validity::kValid;
+}
+
+TEST(NearDegeneratePrism, RelativeHeightOneInTenToTheTwelveIsValidAndItsMirrorInverted) {
+  // A tilted wall triangle far from the origin, extruded along its normal by 1e-12
+  // times its edge length.
+  const Vec3 o{1234.5678, -987.654321, 42.4242};
+  const Vec3 a = o, b = o + Vec3{0.9, 0.3, 0.1}, c = o + Vec3{-0.2, 0.8, 0.4};
+  const Vec3 n = normalized(cross(b - a, c - a));
+  const Vec3 up = 1e-12 * norm(b - a) * n;
+  const std::vector<Vec3> prism{a, c, b, a + up, c + up, b + up};
+  ASSERT_NE(prism[3], prism[0]);  // the offset survives rounding at this magnitude
+  EXPECT_EQ(cell_validity(CellType::kWedge, prism.data()), Validity::kValid);
+  const std::vector<Vec3> down{a, c, b, a - up, c - up, b - up};
+  EXPECT_EQ(cell_validity(CellType::kWedge, down.data()), Validity::kInverted);
+}
+
+TEST(NearDegeneratePrism, ExactPredicatesClassifyLatticePrismsWhereDoublesFail) {
+  // Caps of size ~2^20 sheared by ~2^39 along the wall plane and lifted off it by one
+  // lattice step or not at all: relative heights near 1e-12 and below, with every
+  // coordinate an exact integer so the true class is known from 128-bit arithmetic.
+  std::mt19937_64 rng(2024);
+  std::uniform_int_distribution<std::int64_t> base(0, std::int64_t{1} << 40);
+  std::uniform_int_distribution<std::int64_t> edge(-(std::int64_t{1} << 20), std::int64_t{1} << 20);
+  std::uniform_int_distribution<std::int64_t> shear(-(std::int64_t{1} << 19), std::int64_t{1} << 19);
+  std::uniform_int_distribution<int> nudge(-1, 1);
+  int double_wrong = 0;
+  int by_class[3] = {0, 0, 0};
+  for (int trial = 0; trial < 3000; ++trial) {
+    std::int64_t a[3], p[3], q[3];
+    for (int i = 0; i < 3; ++i) a[i] = base(rng), p[i] = edge(rng), q[i] = edge(rng);
+    const std::int64_t s = shear(rng), t = shear(rng);
+    std::int64_t lift[3];
+    for (int i = 0; i < 3; ++i) lift[i] = s * p[i] + t * q[i];
+    // Wall triangle (a, a+p, a+q) written (a, c, b) as VTK wants, top nodes the
+    // lifted copies plus a random -1/0/+1 nudge per coordinate.
+    const std::int64_t* offsets[3] = {nullptr, q, p};
+    std::vector<Vec3> prism(6);
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) {
+        const std::int64_t x = a[i] + (offsets[k] ? offsets[k][i] : 0);
+        prism[k][i] = static_cast<double>(x);
+        prism[k + 3][i] = static_cast<double>(x + lift[i] + nudge(rng));
+      }
+    const Validity exact = classify(prism, exact_sign);
+    ASSERT_EQ(cell_validity(CellType::kWedge, prism.data()), exact) << "trial " << trial;
+    ASSERT_EQ(prism_is_valid(prism.data()), exact == Validity::kValid) << "trial " << trial;
+    ++by_class[static_cast<int>(exact)];
+    if (classify(prism, double_sign) != exact) ++double_wrong;
+  }
+  // Meaningful only if all classes occur and plain doubles misclassify some prisms.
+  EXPECT_GT(by_class[0], 0);
+  EXPECT_GT(by_class[1], 0);
+  EXPECT_GT(by_class[2], 0);
+  EXPECT_GT(double_wrong, 0);
+}
+
+}  // namespace
+}  // namespace blayer
