@@ -101,7 +101,7 @@ struct Best {
 };
 
 // Brute-force max of D over the fluid region with V >= v_min.
-inline Best maximise(const Link& l, double v_min, int n_samples, unsigned seed) {
+inline Best maximise(const Link& l, double v_min, int n_samples, unsigned seed, std::size_t n_seeds = 6) {
   std::vector<std::pair<double, Vec3>> samples;
   const double golden = M_PI * (3.0 - std::sqrt(5.0));
   for (int i = 0; i < n_samples; ++i) {
@@ -118,7 +118,7 @@ inline Best maximise(const Link& l, double v_min, int n_samples, unsigned seed) 
     bool far = true;
     for (const Vec3& q : seeds) far &= std::atan2(norm(cross(q, s.second)), dot(q, s.second)) > 0.05;
     if (far) seeds.push_back(s.second);
-    if (seeds.size() >= 6) break;
+    if (seeds.size() >= n_seeds) break;
   }
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uni(0.0, 2.0 * M_PI);

@@ -1,0 +1,91 @@
+// The exact most-normal solver against a brute-force oracle (sampling + pattern search,
+// independent D routine) on random fans: the oracle must never beat it.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "blayer/normals/most_normal.h"
+#include "blayer/normals/most_visible.h"
+#include "oracle.h"
+#include "random_fans.h"
+#include "test_fans.h"
+
+namespace blayer {
+namespace {
+
+using testing_fans::Shape;
+
+// The oracle refines to ~1e-14 rad but may stop short on kinks; exact must not lose by
+// more than this (docs/normals.md, Part 5).
+constexpr double kOracleMargin = 1e-7;
+constexpr int kFansPerShape = 60;
+
+class OracleFans : public ::testing::TestWithParam<Shape> {};
+
+TEST_P(OracleFans, ExactMostNormalIsNeverBeaten) {
+  std::mt19937 rng(1234u + static_cast<unsigned>(GetParam()));
+  int n_checked = 0;
+  for (int t = 0; t < kFansPerShape; ++t) {
+    const std::vector<Vec3> ring = testing_fans::random_fan(rng, GetParam());
+    const FanGeometry g = testing_fans::geometry(ring);
+    if (g.any_degenerate) continue;
+    const oracle::Link link = oracle::make_link(ring);
+    const MostVisibleResult mv = most_visible_normal(g.face_normals);
+    ASSERT_TRUE(mv.feasible);  // the generator builds height fields
+    for (bool constrained : {false, true}) {
+      const MostNormalResult mn = most_normal_normal(g, default_tolerances(), constrained);
+      ASSERT_NE(mn.status, NormalStatus::kDegenerateFan);
+      EXPECT_EQ(oracle::fluid(link, mn.normal), 1) << "fan " << t;
+      EXPECT_NEAR(mn.normality, oracle::normality(link, mn.normal), 1e-12) << "fan " << t;
+      const double v_min = constrained ? 0.5 * mv.visibility : -2.0;
+      if (constrained) EXPECT_GE(oracle::visibility(link, mn.normal), v_min - 1e-12) << "fan " << t;
+      const oracle::Best best = oracle::maximise(link, v_min, 3000, 99u + t, 4);
+      EXPECT_GE(mn.normality, best.d - kOracleMargin)
+          << testing_fans::shape_name(GetParam()) << " fan " << t << " k=" << ring.size()
+          << (constrained ? " constrained" : " free");
+      ++n_checked;
+    }
+  }
+  EXPECT_GT(n_checked, kFansPerShape);
+}
+
+TEST_P(OracleFans, WolfeAgreesWithEnumeration) {
+  std::mt19937 rng(777u + static_cast<unsigned>(GetParam()));
+  for (int t = 0; t < 200; ++t) {
+    const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, GetParam()));
+    const MostVisibleResult a = most_visible_normal(g.face_normals);
+    const MostVisibleResult b = most_visible_by_enumeration(g.face_normals.data(), g.n_faces());
+    EXPECT_NEAR(norm(a.normal - b.normal), 0.0, 1e-12);
+    EXPECT_NEAR(a.visibility, b.visibility, 1e-12);
+  }
+}
+
+std::string shape_param_name(const ::testing::TestParamInfo<Shape>& info) {
+  return testing_fans::shape_name(info.param);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, OracleFans,
+                         ::testing::Values(Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kSliver,
+                                           Shape::kWild),
+                         shape_param_name);
+
+TEST(MostNormal, GenericSaddlesKeepHalfTheBestVisibility) {
+  std::mt19937 rng(42);
+  int n_limited = 0;
+  for (int t = 0; t < 300; ++t) {
+    const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, Shape::kSaddle));
+    const MostVisibleResult mv = most_visible_normal(g.face_normals);
+    const MostNormalResult mn = most_normal_normal(g);
+    const MostNormalResult raw = most_normal_normal(g, default_tolerances(), false);
+    EXPECT_GE(mn.visibility, 0.5 * mv.visibility - 1e-12);
+    EXPECT_LE(mn.normality, raw.normality + 1e-9);
+    if (mn.status == NormalStatus::kVisibilityConstrained) {
+      ++n_limited;
+      EXPECT_LT(raw.visibility, 0.5 * mv.visibility);
+    }
+  }
+  RecordProperty("visibility_constrained", n_limited);
+}
+
+}  // namespace
+}  // namespace blayer
