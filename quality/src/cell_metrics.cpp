@@ -42,6 +42,15 @@ double min_corner_jacobian(const std::array<int, 4> (&corners)[N], const Vec3* p
   return m;
 }
 
+// A tet's corner determinants are all 6V; verdict divides by the largest product of
+// corner edge lengths, which for a negative volume gives the value closest to zero.
+double tet_jacobian(const Vec3* p) {
+  double largest = 0.0;
+  for (const std::array<int, 4>& c : kTetCorners)
+    largest = std::max(largest, norm(p[c[1]] - p[c[0]]) * norm(p[c[2]] - p[c[0]]) * norm(p[c[3]] - p[c[0]]));
+  return largest > 0.0 ? triple(p[1] - p[0], p[2] - p[0], p[3] - p[0]) / largest : 0.0;
+}
+
 double hex_centre_jacobian(const Vec3* p) {
   const Vec3 x1 = (p[1] - p[0]) + (p[2] - p[3]) + (p[5] - p[4]) + (p[6] - p[7]);
   const Vec3 x2 = (p[3] - p[0]) + (p[2] - p[1]) + (p[7] - p[4]) + (p[6] - p[5]);
@@ -52,7 +61,7 @@ double hex_centre_jacobian(const Vec3* p) {
 double scaled_jacobian(CellType t, const Vec3* p) {
   double j = 0.0;
   switch (t) {
-    case CellType::kTet: j = std::sqrt(2.0) * min_corner_jacobian(kTetCorners, p); break;
+    case CellType::kTet: j = std::sqrt(2.0) * tet_jacobian(p); break;
     case CellType::kPyramid: j = std::sqrt(2.0) * min_corner_jacobian(kPyramidCorners, p); break;
     case CellType::kWedge: j = 2.0 / std::sqrt(3.0) * min_corner_jacobian(kWedgeCorners, p); break;
     case CellType::kHex: j = std::min(min_corner_jacobian(kHexCorners, p), hex_centre_jacobian(p)); break;

@@ -21,7 +21,9 @@ struct CellMetrics {
   // multiplied by the type's normalisation so that the regular tet (sqrt 2), the
   // equilateral right prism (2/sqrt 3), the equal-edge pyramid (sqrt 2) and the cube (1)
   // score 1, then capped at 1 (only pyramids can exceed it). 0 if a corner has a
-  // zero-length edge. For tets and hexes this is verdict's definition (VTK's
+  // zero-length edge. Tets follow verdict: all corner determinants are 6V, divided by
+  // the largest corner edge-length product (for an inverted tet this is the corner
+  // value closest to zero, not the most negative one). For tets and hexes this is verdict's definition (VTK's
   // TetScaledJacobian / HexScaledJacobian). Being corner-based it does not see a twisted
   // wedge column (a half-turn twist keeps every corner positive); cell_validity() and
   // twist_deg do.

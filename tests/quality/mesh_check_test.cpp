@@ -1,0 +1,237 @@
+#include "blayer/quality/mesh_check.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "blayer/core/errors.h"
+#include "test_cells.h"
+
+namespace blayer {
+namespace {
+
+constexpr double kMetricTol = 1e-12;  // few-flop metrics from exact inputs
+
+// A column of n_layers right prisms over the wall triangle (0,0,0), (1,0,0), (0,1,0),
+// layer k between heights z[k] and z[k+1], with a `layer` cell array.
+VolumeMesh prism_column(const std::vector<double>& z) {
+  VolumeMesh m;
+  for (double h : z) {
+    m.points.push_back({0, 0, h});
+    m.points.push_back({1, 0, h});
+    m.points.push_back({0, 1, h});
+  }
+  DataArray layer{"layer", 1, true, {}};
+  for (std::size_t k = 0; k + 1 < z.size(); ++k) {
+    const auto b = static_cast<std::int64_t>(3 * k), t = b + 3;
+    const std::int64_t nodes[6] = {b, b + 2, b + 1, t, t + 2, t + 1};  // (a, c, b, a', c', b')
+    m.add_cell(CellType::kWedge, nodes);
+    layer.values.push_back(static_cast<double>(k));
+  }
+  m.cell_data.push_back(layer);
+  return m;
+}
+
+TEST(MeshCheck, ValidPrismColumnPassesWithGrowthRatiosAndPerLayerSummaries) {
+  const VolumeMesh m = prism_column({0.0, 0.1, 0.22, 0.364});
+  const MeshCheckReport r = check_volume_mesh(m);
+  EXPECT_TRUE(r.ok());
+  EXPECT_EQ(r.totals.by_type[check_type_index(CellType::kWedge)], 3u);
+  EXPECT_EQ(r.totals.inverted, 0u);
+  EXPECT_EQ(r.totals.flat, 0u);
+  EXPECT_EQ(r.totals.non_conforming, 0u);
+  EXPECT_EQ(r.boundary_faces, 2u + 3u * 3u);  // bottom, top, three sides per layer
+  EXPECT_EQ(r.upper_neighbour, (std::vector<std::int64_t>{1, 2, -1}));
+  const std::vector<double>& growth = r.metrics[5];
+  EXPECT_NEAR(growth[0], 1.2, kMetricTol);
+  EXPECT_NEAR(growth[1], 1.2, kMetricTol);
+  EXPECT_TRUE(std::isnan(growth[2]));
+  ASSERT_EQ(r.layers.size(), 3u);
+  EXPECT_EQ(r.layers[1].layer, 1);
+  EXPECT_EQ(r.layers[1].counts.cells, 1u);
+  EXPECT_NEAR(r.min_scaled_jacobian(), std::sqrt(0.5) * 2.0 / std::sqrt(3.0), kMetricTol);
+}
+
+TEST(MeshCheck, InvertedCellIsCountedAndExtractedWithItsArrays) {
+  VolumeMesh m = prism_column({0.0, 0.1, 0.2, 0.3});
+  m.points[7][2] = 0.05;  // node b at the second level drops below the first level
+  const MeshCheckReport r = check_volume_mesh(m);
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.validity[0], Validity::kValid);
+  EXPECT_EQ(r.validity[1], Validity::kInverted);
+  EXPECT_EQ(r.totals.inverted, 1u);
+  const VolumeMesh bad = extract_bad_cells(m, r);
+  ASSERT_EQ(bad.n_cells(), 1u);
+  EXPECT_EQ(bad.points.size(), 6u);
+  const DataArray* original = bad.find_cell_array("original_cell_id");
+  ASSERT_NE(original, nullptr);
+  EXPECT_EQ(original->values, std::vector<double>{1.0});
+  ASSERT_NE(bad.find_cell_array("layer"), nullptr);
+  EXPECT_EQ(bad.find_cell_array("layer")->values, std::vector<double>{1.0});
+  ASSERT_NE(bad.find_cell_array("validity"), nullptr);
+  EXPECT_EQ(bad.find_cell_array("validity")->values, std::vector<double>{2.0});
+}
+
+TEST(MeshCheck, FlatPrismIsCountedAsFlat) {
+  VolumeMesh m = prism_column({0.0, 0.0});
+  const MeshCheckReport r = check_volume_mesh(m);
+  EXPECT_EQ(r.totals.flat, 1u);
+  EXPECT_EQ(r.totals.inverted, 0u);
+  EXPECT_FALSE(r.ok());
+}
+
+// A hex whose top quad (4,5,6,7) is matched by the bottom caps of two prisms standing
+// on its diagonal split: a non-conforming interface that is topologically invisible
+// to matching faces by node set alone.
+VolumeMesh hex_under_two_prisms() {
+  VolumeMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+              {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1},
+              {0, 0, 2}, {1, 0, 2}, {1, 1, 2}, {0, 1, 2}};
+  const std::int64_t hex[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  m.add_cell(CellType::kHex, hex);
+  // Wall triangles (4,5,6) and (4,6,7) have +z normals; VTK order (a, c, b, a', c', b').
+  const std::int64_t w1[6] = {4, 6, 5, 8, 10, 9};
+  const std::int64_t w2[6] = {4, 7, 6, 8, 11, 10};
+  m.add_cell(CellType::kWedge, w1);
+  m.add_cell(CellType::kWedge, w2);
+  return m;
+}
+
+TEST(MeshCheck, QuadFaceMatchedByTwoTrianglesIsNonConforming) {
+  const VolumeMesh m = hex_under_two_prisms();
+  const MeshCheckReport r = check_volume_mesh(m);
+  EXPECT_EQ(r.totals.inverted, 0u);
+  EXPECT_EQ(r.totals.non_conforming, 3u);
+  EXPECT_EQ(r.non_conforming_faces, 3u);  // the quad and both triangles
+  for (std::size_t c = 0; c < 3; ++c) EXPECT_TRUE(has_flag(r.flags[c], CellCheckFlag::kNonConforming));
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(check_report_to_json(r)["non_conforming"], 3);
+}
+
+TEST(MeshCheck, TwoPrismsSharingAConformingFaceAreNotFlagged) {
+  // Control for the previous test: the same two prisms on their own share the face
+  // (4,6,8,10)-(4,6,10,8) properly.
+  VolumeMesh m = hex_under_two_prisms();
+  VolumeMesh prisms;
+  prisms.points = m.points;
+  const std::int64_t w1[6] = {4, 6, 5, 8, 10, 9};
+  const std::int64_t w2[6] = {4, 7, 6, 8, 11, 10};
+  prisms.add_cell(CellType::kWedge, w1);
+  prisms.add_cell(CellType::kWedge, w2);
+  const MeshCheckReport r = check_volume_mesh(prisms);
+  EXPECT_TRUE(r.ok());
+  EXPECT_EQ(r.boundary_faces, 8u);  // 2 x (2 caps + 3 quads) - 2 sides of the shared quad
+}
+
+TEST(MeshCheck, FaceSharedByThreeCellsIsDetected) {
+  // Three tets on the common triangle (0,1,2): two above it and one below.
+  VolumeMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, 1}, {0.3, 0.3, -1}, {0.25, 0.2, 2}};
+  const std::int64_t up[4] = {0, 1, 2, 3};
+  const std::int64_t down[4] = {0, 2, 1, 4};
+  const std::int64_t up2[4] = {0, 1, 2, 5};
+  m.add_cell(CellType::kTet, up);
+  m.add_cell(CellType::kTet, down);
+  m.add_cell(CellType::kTet, up2);
+  const MeshCheckReport r = check_volume_mesh(m);
+  EXPECT_EQ(r.totals.inverted, 0u);
+  EXPECT_EQ(r.overshared_faces, 1u);
+  for (std::size_t c = 0; c < 3; ++c) EXPECT_TRUE(has_flag(r.flags[c], CellCheckFlag::kOversharedFace));
+  EXPECT_FALSE(r.ok());
+}
+
+TEST(MeshCheck, TwoCellsOnTheSameSideOfTheirFaceAreMisoriented) {
+  VolumeMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, 1}, {0.25, 0.2, 2}};
+  const std::int64_t a[4] = {0, 1, 2, 3};
+  const std::int64_t b[4] = {0, 1, 2, 4};
+  m.add_cell(CellType::kTet, a);
+  m.add_cell(CellType::kTet, b);
+  const MeshCheckReport r = check_volume_mesh(m);
+  EXPECT_EQ(r.totals.inverted, 0u);
+  EXPECT_EQ(r.misoriented_faces, 1u);
+  EXPECT_FALSE(r.ok());
+}
+
+TEST(MeshCheck, CrossedQuadWithTheSameNodesIsNonConforming) {
+  // Two hexes stacked, the upper one's bottom face listing the shared nodes in a
+  // different cyclic order (a bow-tie), so the faces have the same node set only.
+  VolumeMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1},
+              {1, 1, 1}, {0, 1, 1}, {0, 0, 2}, {1, 0, 2}, {1, 1, 2}, {0, 1, 2}};
+  const std::int64_t lower[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  const std::int64_t upper[8] = {4, 6, 5, 7, 8, 9, 10, 11};
+  m.add_cell(CellType::kHex, lower);
+  m.add_cell(CellType::kHex, upper);
+  const MeshCheckReport r = check_volume_mesh(m);
+  EXPECT_TRUE(has_flag(r.flags[0], CellCheckFlag::kNonConforming));
+  EXPECT_TRUE(has_flag(r.flags[1], CellCheckFlag::kNonConforming));
+}
+
+TEST(MeshCheck, StructuralErrorsThrowInputError) {
+  VolumeMesh m = prism_column({0.0, 1.0});
+  m.connectivity[3] = 99;
+  EXPECT_THROW(check_volume_mesh(m), InputError);
+  VolumeMesh short_offsets = prism_column({0.0, 1.0});
+  short_offsets.offsets.pop_back();
+  EXPECT_THROW(check_volume_mesh(short_offsets), InputError);
+}
+
+TEST(MeshCheck, NonFinitePointMakesItsCellInvalid) {
+  VolumeMesh m = prism_column({0.0, 1.0});
+  m.points[4][0] = std::nan("");
+  const MeshCheckReport r = check_volume_mesh(m);
+  EXPECT_EQ(r.validity[0], Validity::kInverted);
+  EXPECT_TRUE(has_flag(r.flags[0], CellCheckFlag::kNonFinite));
+}
+
+TEST(MeshCheck, JsonHasTheDocumentedKeys) {
+  const MeshCheckReport r = check_volume_mesh(prism_column({0.0, 0.1, 0.2}));
+  const nlohmann::json j = check_report_to_json(r);
+  EXPECT_EQ(j["cells"]["wedge"], 2);
+  EXPECT_EQ(j["cells"]["tet"], 0);
+  EXPECT_EQ(j["cells"]["pyramid"], 0);
+  EXPECT_EQ(j["cells"]["hex"], 0);
+  EXPECT_EQ(j["inverted"], 0);
+  EXPECT_EQ(j["flat"], 0);
+  EXPECT_EQ(j["non_conforming"], 0);
+  EXPECT_EQ(j["ok"], true);
+  EXPECT_NEAR(j["min_scaled_jacobian"].get<double>(), r.min_scaled_jacobian(), 0.0);
+  EXPECT_EQ(j["metrics"]["orthogonality_deg"]["count"], 2);
+  ASSERT_EQ(j["layers"].size(), 2u);
+  EXPECT_EQ(j["layers"][1]["layer"], 1);
+  EXPECT_TRUE(j["metrics"]["growth_ratio"]["max"].is_number());
+}
+
+TEST(MeshCheck, TextReportNamesCountsAndLayers) {
+  VolumeMesh m = prism_column({0.0, 0.1, 0.2});
+  m.points[5][2] = -0.5;
+  const std::string text = format_check_report(check_volume_mesh(m));
+  EXPECT_NE(text.find("FAILED"), std::string::npos);
+  EXPECT_NE(text.find("inverted: 1"), std::string::npos);
+  EXPECT_NE(text.find("wedge 2"), std::string::npos);
+  EXPECT_NE(text.find("layer 1:"), std::string::npos);
+  EXPECT_NE(text.find("min_corner_jacobian"), std::string::npos);
+}
+
+TEST(MeshCheck, QualityArraysAreAddedOncePerName) {
+  VolumeMesh m = prism_column({0.0, 0.1, 0.2});
+  add_quality_arrays(m);
+  add_quality_arrays(m);
+  for (const char* name : {"min_corner_jacobian", "skewness", "aspect_ratio", "orthogonality_deg", "twist",
+                           "growth_ratio", "volume", "validity", "check_flags"}) {
+    int copies = 0;
+    for (const DataArray& a : m.cell_data) copies += a.name == name;
+    EXPECT_EQ(copies, 1) << name;
+    ASSERT_NE(m.find_cell_array(name), nullptr);
+    EXPECT_EQ(m.find_cell_array(name)->values.size(), 2u) << name;
+  }
+  EXPECT_TRUE(m.find_cell_array("validity")->integer);
+  EXPECT_NEAR(m.find_cell_array("aspect_ratio")->values[0], (2.0 + std::sqrt(2.0)) / 3.0 / 0.1, kMetricTol);
+}
+
+}  // namespace
+}  // namespace blayer
