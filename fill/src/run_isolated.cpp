@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
@@ -107,8 +108,13 @@ IsolatedOutcome run_isolated(const std::function<std::string()>& work, double ti
   bool timed_out = false;
 
   while (!eof) {
+    int wait_ms = kPollMilliseconds;
+    if (timeout_seconds > 0.0) {
+      const double left = timeout_seconds - std::chrono::duration<double>(Clock::now() - start).count();
+      wait_ms = std::max(0, std::min(wait_ms, static_cast<int>(left * 1000.0)));
+    }
     pollfd pfd{fds[0], POLLIN, 0};
-    const int r = ::poll(&pfd, 1, kPollMilliseconds);
+    const int r = ::poll(&pfd, 1, wait_ms);
     if (r < 0 && errno != EINTR) break;
     if (r > 0) {
       const ssize_t n = ::read(fds[0], buffer, sizeof buffer);

@@ -262,6 +262,15 @@ TEST(TetFill, EnvelopeTouchingTheUserFarfieldIsAnInputError) {
   EXPECT_NE(msg.find("intersects itself"), std::string::npos) << msg;
 }
 
+TEST(TetFill, TetgenTimeoutIsAnInputErrorAndTheCallerContinues) {
+  FillOptions opt;
+  opt.timeout_seconds = 1e-9;
+  const std::string msg = error_of(icosphere(2), opt);
+  EXPECT_NE(msg.find("tetgen failed"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(signal 9)"), std::string::npos) << msg;
+  EXPECT_GT(fill_with_tets(icosphere(1), FillOptions{}).stats.n_tets, 0);
+}
+
 TEST(TetFill, OpenEnvelopeIsAnInputError) {
   TriSurface sphere = icosphere(1);
   sphere.triangles.pop_back();

@@ -34,9 +34,14 @@
 // distance makes neighbouring tets differ in size by about the factor `growth`. TetGen's
 // m switch bounds the circumradius of a tet by the metric at each of its vertices, so
 // each input point gets metric = s(x) * sqrt(6)/4 (the circumradius of a regular tet of
-// edge s). Envelope points get s = h_v, farfield points get s(x) from the formula;
-// TetGen interpolates the metric linearly for the Steiner points it inserts, so the
-// grading in between is smooth and monotone but only approximately geometric.
+// edge s); at an envelope vertex s <= h_v. TetGen interpolates the metric linearly over
+// the current mesh for the Steiner points it inserts, so the grading in between is
+// smooth and monotone but only approximately the formula.
+//
+// Quality: q holds for tets TetGen may split. Tets on boundary triangles cannot be
+// improved under Y, so near poor envelope triangles (thin trailing edges) the radius-
+// edge ratio exceeds the bound; q bounds no dihedral angle, so slivers of a few degrees
+// remain. FillStats reports both figures.
 //
 // Farfield (kOutside): without a user surface, an axis-aligned box centred on the
 // envelope's bounding box. Its side along axis k is farfield_scale times
@@ -116,7 +121,7 @@ struct FillStats {
   std::int64_t n_holes = 0;            // hole points handed to TetGen (bodies)
   double min_envelope_size = 0.0;      // min / max over envelope vertices of h_v
   double max_envelope_size = 0.0;
-  double farfield_size = 0.0;          // s(x) on the farfield (box: its grid spacing)
+  double farfield_size = 0.0;          // box: its grid spacing; user farfield: max s at its points
   double min_dihedral_deg = 0.0;       // over all tets
   // Over tets with no boundary point: what q achieves where Y does not hold it back.
   double min_dihedral_deg_interior = 0.0;
