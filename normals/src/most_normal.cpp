@@ -24,6 +24,10 @@ constexpr double kDistinctMaximizers = 1e-6;
 // meaningfully invisible direction.
 constexpr double kConstraintSlack = 1e-12;
 
+// Margin that keeps the sine/cosine pre-tests of a distance conservative (they reject
+// only when the exact arctangent comparison would as well): a few ulps of values <= 1.
+constexpr double kCheapTestMargin = 1e-15;
+
 struct Arc {
   Vec3 u, v, g;
 };
@@ -67,6 +71,8 @@ class Solver {
 
 bool Solver::evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) const {
   const int k = g_.n_faces();
+  const double cos_thr = thr > 0.0 ? std::cos(thr) + kCheapTestMargin : 2.0;
+  const double sin_thr = thr > 0.0 ? std::sin(std::min(thr, 0.5 * M_PI)) - kCheapTestMargin : -1.0;
   double best = std::numeric_limits<double>::infinity();
   int feature_arc = -1;
   int feature_kind = 0;  // 0: arc interior or pole, 1: arc start, 2: arc end
@@ -82,8 +88,12 @@ bool Solver::evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) con
     if (mm == 0.0) {
       d = 0.5 * M_PI;
     } else if (dot(cross(u, m), f) >= 0.0 && dot(cross(m, v), f) >= 0.0) {
+      // Cheap rejection in sine space before the arctangent (d <= pi/2 here).
+      if (thr > 0.5 * M_PI || std::fabs(nf) < sin_thr) return false;
       d = std::atan2(std::fabs(nf), mm);
     } else {
+      // Cheap rejection in cosine space before the arctangents.
+      if (std::max(dot(n, u), dot(n, v)) > cos_thr) return false;
       const double du = angle_between(n, u), dv = angle_between(n, v);
       d = du <= dv ? du : dv;
       kind = du <= dv ? 1 : 2;
