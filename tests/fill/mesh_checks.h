@@ -9,14 +9,11 @@
 #include <set>
 
 #include "blayer/fill/tet_fill.h"
+#include "blayer/quality/orient3d.h"
 
 namespace blayer::fill_test {
 
-// A tet counts as positive when its determinant, evaluated in long double, exceeds
-// this multiple of (longest edge)^3: 1e-15 is far above long double rounding on the
-// 3x3 products (~1e-18 relative), so a positive sign cannot be a rounding artefact.
-constexpr long double kPositiveDetRel = 1e-15L;
-
+// Six times the signed volume, in long double: only summed for the domain volume.
 inline long double det_ld(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   long double u[3], v[3], w[3];
   for (int k = 0; k < 3; ++k) {
@@ -40,10 +37,10 @@ struct MeshFigures {
   std::size_t n_interior_faces = 0;
 };
 
-// Checks: all cells are tets with valid indices and positive volume; every face is
-// shared by one or two tets; faces with one tet are exactly the boundary triangles;
-// each boundary triangle (a,b,c) is a tet face whose fourth vertex lies on the side its
-// normal points to (node for node, same indices).
+// Checks: all cells are tets with valid indices and positive volume (exact orient3d);
+// every face is shared by one or two tets; faces with one tet are exactly the boundary
+// triangles; each boundary triangle (a,b,c) is a tet face whose fourth vertex lies on
+// the side its normal points to (node for node, same indices).
 inline MeshFigures check_fill(const FillResult& r) {
   MeshFigures fig;
   const VolumeMesh& m = r.tets;
@@ -58,11 +55,8 @@ inline MeshFigures check_fill(const FillResult& r) {
       EXPECT_LT(n[k], np);
     }
     const Vec3 &a = m.points[n[0]], &b = m.points[n[1]], &cc = m.points[n[2]], &d = m.points[n[3]];
-    double longest = 0;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, norm(m.points[n[i]] - m.points[n[j]]));
+    if (orient3d_sign(a, b, cc, d) <= 0) ++fig.n_nonpositive;
     const long double det = det_ld(a, b, cc, d);
-    if (!(det > kPositiveDetRel * longest * longest * longest)) ++fig.n_nonpositive;
     fig.volume += det / 6.0L;
     static const int kFaces[4][4] = {{1, 2, 3, 0}, {0, 2, 3, 1}, {0, 1, 3, 2}, {0, 1, 2, 3}};
     for (const auto& f : kFaces) faces[face_key(n[f[0]], n[f[1]], n[f[2]])].push_back({c, n[f[3]]});
@@ -89,7 +83,7 @@ inline MeshFigures check_fill(const FillResult& r) {
       continue;
     }
     const std::int64_t d = it->second.front().second;
-    EXPECT_GT(det_ld(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[d]), 0.0L)
+    EXPECT_GT(orient3d_sign(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[d]), 0)
         << "tet lies behind a boundary triangle's normal";
   }
   EXPECT_EQ(fig.n_nonpositive, 0u);

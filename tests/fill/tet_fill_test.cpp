@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "blayer/core/errors.h"
+#include "blayer/quality/mesh_check.h"
 #include "mesh_checks.h"
 #include "test_surfaces.h"
 
@@ -90,6 +91,15 @@ TEST(TetFill, SphereInBoxGivesPositiveConformingTetsOutsideTheBody) {
   // The default box: each side 10 times the envelope's extent (2).
   EXPECT_NEAR(box_volume(r.tets.points, sphere.points.size()), 20.0 * 20.0 * 20.0, 1e-9);
   EXPECT_GT(r.stats.min_dihedral_deg, 0.0);
+}
+
+TEST(TetFill, SphereFillPassesTheQualityModulesMeshCheck) {
+  const TriSurface sphere = icosphere(2);
+  const FillResult r = fill_with_tets(sphere, FillOptions{});
+  const MeshCheckReport report = check_volume_mesh(r.tets);
+  EXPECT_TRUE(report.ok()) << format_check_report(report);
+  EXPECT_EQ(report.totals.by_type[0], r.tets.n_cells());
+  EXPECT_EQ(report.boundary_faces, r.boundary.triangles.size());
 }
 
 TEST(TetFill, CubeInBoxKeepsEveryCubeTriangleAsATetFace) {
