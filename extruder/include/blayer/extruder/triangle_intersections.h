@@ -1,0 +1,43 @@
+// Exact intersection tests between closed triangles, and a checker that finds every
+// intersecting pair in a triangle soup with shared vertex ids (e.g. an envelope together
+// with its wall). All decisions use the exact orient3d of quality/orient3d.h; touching
+// counts as intersecting.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "blayer/core/vec3.h"
+
+namespace blayer {
+
+using IndexedTriangle = std::array<std::int64_t, 3>;
+
+// Closed segment pq against closed triangle abc, including the coplanar case (decided in
+// the projection that drops the dominant axis of the triangle's normal). The triangle
+// must not be degenerate (collinear corners); the segment may be a point.
+bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Do the two closed triangles of a soup meet anywhere other than at the vertex ids they
+// share?  Sharing three ids: the same face, never an intersection. Sharing an edge: only
+// a coplanar fold (the two opposite corners on the same side of the edge) counts.
+// Sharing one vertex v: (v,a,b) and (v,c,d) meet beyond v iff segment ab meets the
+// second triangle or cd meets the first (the common part of two triangles through v
+// ends on one of these opposite edges). Otherwise: iff an edge of one meets the other.
+bool soup_triangles_intersect(const std::vector<Vec3>& points, const IndexedTriangle& s,
+                              const IndexedTriangle& t);
+
+// All pairs (i < j) of intersecting triangles per soup_triangles_intersect, found with a
+// TriangleBvh over the triangles' boxes, in increasing (i, j) order. If `check` is given
+// (one flag per triangle) only pairs with at least one flagged triangle are tested.
+// Stops after max_pairs pairs. Parallel over triangles; the result is deterministic.
+std::vector<std::pair<int, int>> find_triangle_intersections(
+    const std::vector<Vec3>& points, const std::vector<IndexedTriangle>& triangles,
+    const std::vector<char>* check = nullptr,
+    std::size_t max_pairs = std::numeric_limits<std::size_t>::max());
+
+}  // namespace blayer

@@ -1,0 +1,160 @@
+#include "blayer/extruder/triangle_intersections.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "blayer/extruder/triangle_bvh.h"
+#include "blayer/quality/orient3d.h"
+
+namespace blayer {
+
+namespace {
+
+using Vec2 = std::array<double, 2>;
+
+// Exact 2D orientation, obtained from the exact 3D predicate: lifting the points to
+// z = 0 and taking the apex (0,0,1) makes det[b-a, c-a, d-a] equal to the 2D
+// determinant, with no rounding in the lifted coordinates.
+int orient2d(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return orient3d_sign({a[0], a[1], 0.0}, {b[0], b[1], 0.0}, {c[0], c[1], 0.0}, {0.0, 0.0, 1.0});
+}
+
+// c lies on the closed segment ab, given that a, b, c are collinear.
+bool on_segment_collinear(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= c[1] &&
+         c[1] <= std::max(a[1], b[1]);
+}
+
+bool segments_intersect_2d(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
+  const int o1 = orient2d(p, q, a), o2 = orient2d(p, q, b), o3 = orient2d(a, b, p), o4 = orient2d(a, b, q);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  if (o1 == 0 && on_segment_collinear(p, q, a)) return true;
+  if (o2 == 0 && on_segment_collinear(p, q, b)) return true;
+  if (o3 == 0 && on_segment_collinear(a, b, p)) return true;
+  if (o4 == 0 && on_segment_collinear(a, b, q)) return true;
+  return false;
+}
+
+bool point_in_triangle_2d(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  const int o1 = orient2d(a, b, p), o2 = orient2d(b, c, p), o3 = orient2d(c, a, p);
+  return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
+}
+
+// Projection indices (i, j) that drop the dominant axis of triangle abc's normal.
+void projection_axes(const Vec3& a, const Vec3& b, const Vec3& c, int* i, int* j) {
+  const Vec3 n = cross(b - a, c - a);
+  int drop = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(n[k]) > std::fabs(n[drop])) drop = k;
+  *i = (drop + 1) % 3;
+  *j = (drop + 2) % 3;
+}
+
+bool coplanar_segment_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Drop the dominant axis of the normal: any axis with a non-zero normal component
+  // keeps the projection one-to-one, so a rounded normal is good enough to choose it.
+  int i, j;
+  projection_axes(a, b, c, &i, &j);
+  const Vec2 P{p[i], p[j]}, Q{q[i], q[j]}, A{a[i], a[j]}, B{b[i], b[j]}, C{c[i], c[j]};
+  if (point_in_triangle_2d(P, A, B, C) || point_in_triangle_2d(Q, A, B, C)) return true;
+  return segments_intersect_2d(P, Q, A, B) || segments_intersect_2d(P, Q, B, C) || segments_intersect_2d(P, Q, C, A);
+}
+
+// For d coplanar with triangle abc: are c and d strictly on the same side of line ab?
+bool coplanar_same_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  int i, j;
+  projection_axes(a, b, c, &i, &j);
+  const Vec2 A{a[i], a[j]}, B{b[i], b[j]}, C{c[i], c[j]}, D{d[i], d[j]};
+  return orient2d(A, B, C) * orient2d(A, B, D) > 0;
+}
+
+bool triangles_intersect(const Vec3* s, const Vec3* t) {
+  for (int k = 0; k < 3; ++k) {
+    if (segment_intersects_triangle(s[k], s[(k + 1) % 3], t[0], t[1], t[2])) return true;
+    if (segment_intersects_triangle(t[k], t[(k + 1) % 3], s[0], s[1], s[2])) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const int sp = orient3d_sign(a, b, c, p), sq = orient3d_sign(a, b, c, q);
+  if (sp == 0 && sq == 0) return coplanar_segment_triangle(p, q, a, b, c);
+  if (sp * sq > 0) return false;
+  // The line pq crosses the plane within the segment; it meets the closed triangle iff
+  // it passes on the same side of (or touches) all three edges.
+  const int o1 = orient3d_sign(p, q, a, b), o2 = orient3d_sign(p, q, b, c), o3 = orient3d_sign(p, q, c, a);
+  return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
+}
+
+bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangle& s, const IndexedTriangle& t) {
+  int shared_s[3], shared_t[3], n_shared = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (s[i] == t[j]) {
+        shared_s[n_shared] = i;
+        shared_t[n_shared] = j;
+        ++n_shared;
+      }
+  if (n_shared >= 3) return false;
+  if (n_shared == 2) {
+    const int os = 3 - shared_s[0] - shared_s[1], ot = 3 - shared_t[0] - shared_t[1];
+    const Vec3& a = pts[s[shared_s[0]]];
+    const Vec3& b = pts[s[shared_s[1]]];
+    const Vec3& c = pts[s[os]];
+    const Vec3& d = pts[t[ot]];
+    if (orient3d_sign(a, b, c, d) != 0) return false;
+    // Coplanar: a fold iff c and d lie on the same side of the line ab in that plane.
+    return coplanar_same_side(a, b, c, d);
+  }
+  if (n_shared == 1) {
+    const int is = shared_s[0], it = shared_t[0];
+    const Vec3& sa = pts[s[(is + 1) % 3]];
+    const Vec3& sb = pts[s[(is + 2) % 3]];
+    const Vec3& ta = pts[t[(it + 1) % 3]];
+    const Vec3& tb = pts[t[(it + 2) % 3]];
+    const Vec3& v = pts[s[is]];
+    return segment_intersects_triangle(sa, sb, v, ta, tb) || segment_intersects_triangle(ta, tb, v, sa, sb);
+  }
+  const Vec3 S[3] = {pts[s[0]], pts[s[1]], pts[s[2]]};
+  const Vec3 T[3] = {pts[t[0]], pts[t[1]], pts[t[2]]};
+  return triangles_intersect(S, T);
+}
+
+std::vector<std::pair<int, int>> find_triangle_intersections(const std::vector<Vec3>& points,
+                                                             const std::vector<IndexedTriangle>& triangles,
+                                                             const std::vector<char>* check, std::size_t max_pairs) {
+  const int n = static_cast<int>(triangles.size());
+  std::vector<Box> boxes(n);
+  tbb::parallel_for(0, n, [&](int i) {
+    const IndexedTriangle& t = triangles[i];
+    boxes[i] = Box::of_triangle(points[t[0]], points[t[1]], points[t[2]]);
+  });
+  TriangleBvh bvh;
+  bvh.build(boxes);
+  std::vector<std::vector<int>> hits(n);
+  tbb::parallel_for(0, n, [&](int i) {
+    const bool ci = !check || (*check)[i];
+    bvh.for_each_overlap(boxes[i], [&](int j) {
+      // Each unordered pair once: from its smaller index, unless only the larger one is
+      // flagged, in which case from the flagged one.
+      const bool cj = !check || (*check)[j];
+      if (j == i || !(ci || cj)) return;
+      const bool owner = (ci && cj) ? i < j : ci;
+      if (!owner) return;
+      if (soup_triangles_intersect(points, triangles[i], triangles[j])) hits[i].push_back(j);
+    });
+    std::sort(hits[i].begin(), hits[i].end());
+  });
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < n && pairs.size() < max_pairs; ++i)
+    for (int j : hits[i]) pairs.emplace_back(std::min(i, j), std::max(i, j));
+  std::sort(pairs.begin(), pairs.end());
+  if (pairs.size() > max_pairs) pairs.resize(max_pairs);
+  return pairs;
+}
+
+}  // namespace blayer

@@ -1,0 +1,166 @@
+#include "blayer/extruder/layer_cells.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "blayer/quality/cell_validity.h"
+
+namespace blayer {
+namespace {
+
+// Wall triangle (a,b,c) counter-clockwise in the plane z = 0, so its right-hand normal
+// (+z) points into the fluid; column tops one unit up. Point ids 0..2 bottoms, 3..5 tops.
+const Vec3 kPts[6] = {{0, 0, 0}, {1, 0, 0}, {0.3, 0.9, 0}, {0, 0, 1}, {1, 0, 1}, {0.3, 0.9, 1}};
+
+std::vector<Vec3> corners_of(const LayerCell& c, const Vec3* pts) {
+  std::vector<Vec3> out;
+  for (int i = 0; i < corner_count(c.type); ++i) out.push_back(pts[c.nodes[i]]);
+  return out;
+}
+
+LayerCell make(std::array<bool, 3> g) {
+  LayerCell c;
+  EXPECT_TRUE(layer_cell({0, 1, 2}, {3, 4, 5}, g, &c));
+  return c;
+}
+
+TEST(LayerCells, AllColumnsGrowingGiveAValidVtkWedge) {
+  const LayerCell c = make({true, true, true});
+  ASSERT_EQ(c.type, CellType::kWedge);
+  const std::vector<Vec3> p = corners_of(c, kPts);
+  EXPECT_TRUE(prism_is_valid(p.data()));
+  EXPECT_EQ(cell_validity(CellType::kWedge, p.data()), Validity::kValid);
+  // The wall triangle's own winding as the first cap would face the top: VTK reads that
+  // as inverted. This pins the (a, c, b, a', c', b') order.
+  const Vec3 wrong[6] = {kPts[0], kPts[1], kPts[2], kPts[3], kPts[4], kPts[5]};
+  EXPECT_FALSE(prism_is_valid(wrong));
+  EXPECT_EQ(cell_validity(CellType::kWedge, wrong), Validity::kInverted);
+}
+
+TEST(LayerCells, OneStoppedColumnGivesAValidPyramidWithTheStoppedPointAsApex) {
+  for (int x = 0; x < 3; ++x) {
+    std::array<bool, 3> g{true, true, true};
+    g[x] = false;
+    const LayerCell c = make(g);
+    ASSERT_EQ(c.type, CellType::kPyramid);
+    EXPECT_EQ(c.nodes[4], x);
+    const std::vector<Vec3> p = corners_of(c, kPts);
+    EXPECT_EQ(cell_validity(CellType::kPyramid, p.data()), Validity::kValid) << "stopped column " << x;
+  }
+}
+
+TEST(LayerCells, TwoStoppedColumnsGiveAValidTet) {
+  for (int z = 0; z < 3; ++z) {
+    std::array<bool, 3> g{false, false, false};
+    g[z] = true;
+    const LayerCell c = make(g);
+    ASSERT_EQ(c.type, CellType::kTet);
+    const std::vector<Vec3> p = corners_of(c, kPts);
+    EXPECT_EQ(cell_validity(CellType::kTet, p.data()), Validity::kValid) << "growing column " << z;
+  }
+}
+
+TEST(LayerCells, NoGrowingColumnGivesNoCell) {
+  LayerCell c;
+  EXPECT_FALSE(layer_cell({0, 1, 2}, {3, 4, 5}, {false, false, false}, &c));
+}
+
+// Faces of a cell as sorted node sets.
+std::vector<std::vector<std::int64_t>> faces(const LayerCell& c) {
+  const auto& n = c.nodes;
+  std::vector<std::vector<std::int64_t>> f;
+  switch (c.type) {
+    case CellType::kTet: f = {{n[0], n[1], n[2]}, {n[0], n[1], n[3]}, {n[1], n[2], n[3]}, {n[0], n[2], n[3]}}; break;
+    case CellType::kPyramid:
+      f = {{n[0], n[1], n[2], n[3]}, {n[0], n[1], n[4]}, {n[1], n[2], n[4]}, {n[2], n[3], n[4]}, {n[3], n[0], n[4]}};
+      break;
+    case CellType::kWedge:
+      f = {{n[0], n[1], n[2]}, {n[3], n[4], n[5]}, {n[0], n[1], n[4], n[3]}, {n[1], n[2], n[5], n[4]},
+           {n[2], n[0], n[3], n[5]}};
+      break;
+    case CellType::kHex: break;
+  }
+  for (auto& x : f) std::sort(x.begin(), x.end());
+  return f;
+}
+
+TEST(LayerCells, NeighboursAgreeOnTheSharedSideFaceForEveryGrowthPattern) {
+  // Triangles (0,1,2) and (0,3,1) share edge 0-1; tops are id + 10.
+  for (int mask = 1; mask < 16; ++mask) {
+    const bool g[4] = {bool(mask & 1), bool(mask & 2), bool(mask & 4), bool(mask & 8)};
+    LayerCell c1, c2;
+    const bool h1 = layer_cell({0, 1, 2}, {10, 11, 12}, {g[0], g[1], g[2]}, &c1);
+    const bool h2 = layer_cell({0, 3, 1}, {10, 13, 11}, {g[0], g[3], g[1]}, &c2);
+    auto on_edge = [](const LayerCell& c, bool has) {
+      std::set<std::vector<std::int64_t>> out;
+      if (!has) return out;
+      const std::set<std::int64_t> edge{0, 1, 10, 11};
+      for (const auto& f : faces(c))
+        if (std::all_of(f.begin(), f.end(), [&](std::int64_t v) { return edge.count(v) > 0; })) out.insert(f);
+      return out;
+    };
+    const auto f1 = on_edge(c1, h1), f2 = on_edge(c2, h2);
+    SCOPED_TRACE(testing::Message() << "growth mask " << mask);
+    if (g[0] || g[1]) {
+      ASSERT_TRUE(h1 && h2);
+      EXPECT_EQ(f1.size(), 1u);
+      EXPECT_EQ(f1, f2);
+    } else {
+      EXPECT_TRUE(f1.empty());
+      EXPECT_TRUE(f2.empty());
+    }
+  }
+}
+
+TEST(LayerCells, InvertedFlatAndTwistedPrismsAreRejected) {
+  const LayerCell c = make({true, true, true});
+  auto wedge = [&](const Vec3* pts) { return corners_of(c, pts); };
+  // Tops below the wall: inverted.
+  Vec3 down[6] = {kPts[0], kPts[1], kPts[2], {0, 0, -1}, {1, 0, -1}, {0.3, 0.9, -1}};
+  EXPECT_FALSE(prism_is_valid(wedge(down).data()));
+  // Zero height: flat.
+  Vec3 flat[6] = {kPts[0], kPts[1], kPts[2], kPts[0], kPts[1], kPts[2]};
+  EXPECT_FALSE(prism_is_valid(wedge(flat).data()));
+  EXPECT_EQ(cell_validity(CellType::kWedge, wedge(flat).data()), Validity::kFlat);
+  // Top cap mirrored (b' and c' swapped): every base tet is positive, the top cap is not.
+  Vec3 twisted[6] = {kPts[0], kPts[1], kPts[2], kPts[3], kPts[5], kPts[4]};
+  EXPECT_FALSE(prism_is_valid(wedge(twisted).data()));
+  // Top cap tilted past wall vertex b: every top lies above the wall plane (the three
+  // base-cap tets are positive) but b lies above the top cap's plane.
+  Vec3 tilted[6] = {kPts[0], kPts[1], kPts[2], {0, 0, 0.1}, {-2, 0, 3}, {0.3, 0.9, 0.1}};
+  EXPECT_FALSE(prism_is_valid(wedge(tilted).data()));
+  // A pure shear keeps both caps parallel and the cell valid.
+  Vec3 sheared[6] = {kPts[0], kPts[1], kPts[2], {3, 0, 0.1}, {4, 0, 0.1}, {3.3, 0.9, 0.1}};
+  EXPECT_TRUE(prism_is_valid(wedge(sheared).data()));
+}
+
+TEST(LayerCells, ScaledJacobianOfReferenceCells) {
+  // Equilateral right prism: the cap corners have 60 degree angles.
+  const double s = std::sqrt(3.0) / 2.0;
+  const Vec3 eq[6] = {{0, 0, 0}, {1, 0, 0}, {0.5, s, 0}, {0, 0, 1}, {1, 0, 1}, {0.5, s, 1}};
+  const LayerCell c = make({true, true, true});
+  const std::vector<Vec3> p = corners_of(c, eq);
+  EXPECT_NEAR(min_corner_scaled_jacobian(CellType::kWedge, p.data()), s, 1e-14);
+  // Orthogonal tet corner at the origin; the other corners are 45/45/90-ish.
+  const Vec3 tet[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const double jt = min_corner_scaled_jacobian(CellType::kTet, tet);
+  EXPECT_GT(jt, 0.0);
+  EXPECT_LT(jt, 1.0);
+  const Vec3 tet_inverted[4] = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}};
+  EXPECT_LT(min_corner_scaled_jacobian(CellType::kTet, tet_inverted), 0.0);
+  // Unit pyramid base corners are orthogonal to the base edges but lean to the apex.
+  const Vec3 pyr[5] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 1}};
+  EXPECT_GT(min_corner_scaled_jacobian(CellType::kPyramid, pyr), 0.0);
+  const Vec3 pyr_down[5] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, -1}};
+  EXPECT_LT(min_corner_scaled_jacobian(CellType::kPyramid, pyr_down), 0.0);
+  // Every corner of the inverted wedge is negative.
+  Vec3 down[6] = {kPts[0], kPts[1], kPts[2], {0, 0, -1}, {1, 0, -1}, {0.3, 0.9, -1}};
+  EXPECT_LT(min_corner_scaled_jacobian(CellType::kWedge, corners_of(c, down).data()), 0.0);
+}
+
+}  // namespace
+}  // namespace blayer

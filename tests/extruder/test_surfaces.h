@@ -1,0 +1,171 @@
+// Small analytic surfaces built in code for the extruder tests, and independent mesh
+// checks (exact validity of every cell, face sharing, volumes).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <vector>
+
+#include "blayer/core/surface.h"
+#include "blayer/core/volume_mesh.h"
+#include "blayer/quality/cell_validity.h"
+#include "blayer/quality/orient3d.h"
+
+namespace blayer::test {
+
+// Icosahedron subdivided `level` times, projected to the sphere of radius r; faces
+// outward (fluid outside).
+inline TriSurface icosphere(int level, double r) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  TriSurface s;
+  s.points = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+              {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  s.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for (int l = 0; l < level; ++l) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      s.points.push_back(0.5 * (s.points[a] + s.points[b]));
+      return mid[key] = static_cast<int>(s.points.size()) - 1;
+    };
+    std::vector<Triangle> next;
+    for (const Triangle& f : s.triangles) {
+      const int ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+      next.push_back({f[0], ab, ca});
+      next.push_back({f[1], bc, ab});
+      next.push_back({f[2], ca, bc});
+      next.push_back({ab, bc, ca});
+    }
+    s.triangles.swap(next);
+  }
+  for (Vec3& p : s.points) p = r * normalized(p);
+  return s;
+}
+
+// Boundary of a union of unit voxels (i,j,k) in [0,n)^3 where filled(i,j,k), scaled by
+// `cell`; faces outward from the solid. The union must be a manifold solid (no voxels
+// touching along an edge or corner only).
+inline TriSurface voxel_surface(std::array<int, 3> n, const std::function<bool(int, int, int)>& filled,
+                                double cell) {
+  TriSurface s;
+  std::map<std::array<int, 3>, int> ids;
+  auto id = [&](std::array<int, 3> g) {
+    auto it = ids.find(g);
+    if (it != ids.end()) return it->second;
+    s.points.push_back({g[0] * cell, g[1] * cell, g[2] * cell});
+    return ids[g] = static_cast<int>(s.points.size()) - 1;
+  };
+  auto in = [&](int i, int j, int k) {
+    return i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2] && filled(i, j, k);
+  };
+  for (int i = 0; i < n[0]; ++i)
+    for (int j = 0; j < n[1]; ++j)
+      for (int k = 0; k < n[2]; ++k) {
+        if (!in(i, j, k)) continue;
+        for (int a = 0; a < 3; ++a)
+          for (int sgn : {-1, 1}) {
+            std::array<int, 3> nb{i, j, k};
+            nb[a] += sgn;
+            if (in(nb[0], nb[1], nb[2])) continue;
+            const int u = (a + 1) % 3, w = (a + 2) % 3;
+            std::array<int, 3> base{i, j, k};
+            if (sgn > 0) base[a] += 1;
+            std::array<int, 3> c0 = base, c1 = base, c2 = base, c3 = base;
+            c1[u] += 1;
+            c2[u] += 1;
+            c2[w] += 1;
+            c3[w] += 1;
+            // cross(e_u, e_w) = e_a: counter-clockwise seen from +a.
+            std::array<int, 4> q{id(c0), id(c1), id(c2), id(c3)};
+            if (sgn < 0) std::swap(q[1], q[3]);
+            s.triangles.push_back({q[0], q[1], q[2]});
+            s.triangles.push_back({q[0], q[2], q[3]});
+          }
+      }
+  return s;
+}
+
+inline TriSurface flipped(TriSurface s) {
+  for (Triangle& t : s.triangles) std::swap(t[1], t[2]);
+  return s;
+}
+
+inline std::vector<Vec3> cell_corners(const VolumeMesh& m, std::size_t c) {
+  std::vector<Vec3> p;
+  for (std::int64_t i = m.offsets[c]; i < m.offsets[c + 1]; ++i) p.push_back(m.points[m.connectivity[i]]);
+  return p;
+}
+
+// Faces of a cell in VTK order as node lists (orientation irrelevant here).
+inline std::vector<std::vector<std::int64_t>> cell_faces(const VolumeMesh& m, std::size_t c) {
+  const std::int64_t* n = m.connectivity.data() + m.offsets[c];
+  switch (m.cell_types[c]) {
+    case CellType::kTet: return {{n[0], n[1], n[2]}, {n[0], n[1], n[3]}, {n[1], n[2], n[3]}, {n[0], n[2], n[3]}};
+    case CellType::kPyramid:
+      return {{n[0], n[1], n[2], n[3]}, {n[0], n[1], n[4]}, {n[1], n[2], n[4]}, {n[2], n[3], n[4]}, {n[3], n[0], n[4]}};
+    case CellType::kWedge:
+      return {{n[0], n[1], n[2]}, {n[3], n[4], n[5]}, {n[0], n[1], n[4], n[3]}, {n[1], n[2], n[5], n[4]},
+              {n[2], n[0], n[3], n[5]}};
+    case CellType::kHex: break;
+  }
+  return {};
+}
+
+// Number of cells per face (faces keyed by their sorted node set).
+inline std::map<std::vector<std::int64_t>, int> face_use(const VolumeMesh& m) {
+  std::map<std::vector<std::int64_t>, int> use;
+  for (std::size_t c = 0; c < m.n_cells(); ++c)
+    for (auto f : cell_faces(m, c)) {
+      std::sort(f.begin(), f.end());
+      ++use[f];
+    }
+  return use;
+}
+
+// Volume of a cell by splitting it into tets from its first node (exact for planar
+// faces; boundary-layer quads are nearly planar, and the split is consistent between
+// neighbours because each quad is split along the diagonal through its smallest id).
+inline double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return dot(cross(b - a, c - a), d - a) / 6.0;
+}
+
+// Signed volume via the divergence theorem over the faces with outward orientation.
+// Each quad is split along the diagonal through its smallest node id, so a quad shared
+// by two cells is split the same way in both and the volumes add up exactly.
+inline double cell_volume_divergence(const VolumeMesh& m, std::size_t c) {
+  const std::int64_t* n = m.connectivity.data() + m.offsets[c];
+  std::vector<std::vector<std::int64_t>> faces;  // outward orientation
+  switch (m.cell_types[c]) {
+    case CellType::kTet: faces = {{n[0], n[2], n[1]}, {n[0], n[1], n[3]}, {n[1], n[2], n[3]}, {n[2], n[0], n[3]}}; break;
+    case CellType::kPyramid:
+      faces = {{n[0], n[3], n[2], n[1]}, {n[0], n[1], n[4]}, {n[1], n[2], n[4]}, {n[2], n[3], n[4]}, {n[3], n[0], n[4]}};
+      break;
+    case CellType::kWedge:
+      faces = {{n[0], n[1], n[2]}, {n[3], n[5], n[4]}, {n[0], n[3], n[4], n[1]}, {n[1], n[4], n[5], n[2]},
+               {n[2], n[5], n[3], n[0]}};
+      break;
+    case CellType::kHex: break;
+  }
+  const Vec3 o{0, 0, 0};
+  double v = 0.0;
+  for (const auto& f : faces) {
+    if (f.size() == 3) {
+      v += tet_volume(o, m.points[f[0]], m.points[f[1]], m.points[f[2]]);
+    } else {
+      const int s = static_cast<int>(std::min_element(f.begin(), f.end()) - f.begin());
+      const auto& P = m.points;
+      v += tet_volume(o, P[f[s]], P[f[(s + 1) % 4]], P[f[(s + 2) % 4]]);
+      v += tet_volume(o, P[f[s]], P[f[(s + 2) % 4]], P[f[(s + 3) % 4]]);
+    }
+  }
+  return v;
+}
+
+}  // namespace blayer::test

@@ -1,0 +1,97 @@
+#include "blayer/extruder/triangle_intersections.h"
+
+#include <gtest/gtest.h>
+
+#include "test_surfaces.h"
+
+namespace blayer {
+namespace {
+
+const Vec3 A{0, 0, 0}, B{1, 0, 0}, C{0, 1, 0};
+
+TEST(TriangleIntersections, SegmentThroughTheInteriorHits) {
+  EXPECT_TRUE(segment_intersects_triangle({0.2, 0.2, -1}, {0.2, 0.2, 1}, A, B, C));
+  EXPECT_FALSE(segment_intersects_triangle({0.8, 0.8, -1}, {0.8, 0.8, 1}, A, B, C));
+  EXPECT_FALSE(segment_intersects_triangle({0.2, 0.2, 0.5}, {0.2, 0.2, 1}, A, B, C));
+}
+
+TEST(TriangleIntersections, TouchingCountsAsHitting) {
+  EXPECT_TRUE(segment_intersects_triangle({0.2, 0.2, 0}, {0.2, 0.2, 1}, A, B, C));  // endpoint on the face
+  EXPECT_TRUE(segment_intersects_triangle({0.5, 0.5, -1}, {0.5, 0.5, 1}, A, B, C));  // through the edge
+  EXPECT_TRUE(segment_intersects_triangle({0, 0, -1}, {0, 0, 1}, A, B, C));          // through a vertex
+}
+
+TEST(TriangleIntersections, CoplanarSegmentsAreDecidedInThePlane) {
+  EXPECT_TRUE(segment_intersects_triangle({-1, 0.2, 0}, {2, 0.2, 0}, A, B, C));
+  EXPECT_TRUE(segment_intersects_triangle({0.1, 0.1, 0}, {0.2, 0.2, 0}, A, B, C));  // inside
+  EXPECT_FALSE(segment_intersects_triangle({1, 1, 0}, {2, 2, 0}, A, B, C));
+}
+
+TEST(TriangleIntersections, SharedEdgeOnlyCountsWhenFolded) {
+  const std::vector<Vec3> p = {A, B, C, {0.5, -1, 0}, {0.2, 0.3, 0}, {0.5, -1, 1}};
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {1, 0, 3}));  // flat continuation
+  EXPECT_TRUE(soup_triangles_intersect(p, {0, 1, 2}, {1, 0, 4}));   // folded onto itself
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {1, 0, 5}));  // a dihedral angle
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {2, 1, 0}));  // the same face
+}
+
+TEST(TriangleIntersections, SharedVertexCountsWhenTheTrianglesCrossBeyondIt) {
+  // Both triangles contain the origin; the second pierces the first away from it.
+  const std::vector<Vec3> p = {A, B, C, {0.3, 0.3, -1}, {0.3, 0.3, 1}, {-1, -1, 1}, {-1, 0, 1}};
+  EXPECT_TRUE(soup_triangles_intersect(p, {0, 1, 2}, {0, 3, 4}));
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {0, 5, 6}));
+}
+
+TEST(TriangleIntersections, ClosedSphereHasNoIntersectingPairs) {
+  const TriSurface s = test::icosphere(2, 1.0);
+  std::vector<IndexedTriangle> t;
+  for (const Triangle& f : s.triangles) t.push_back({f[0], f[1], f[2]});
+  EXPECT_TRUE(find_triangle_intersections(s.points, t).empty());
+}
+
+TEST(TriangleIntersections, PushingAVertexThroughTheSphereIsFound) {
+  TriSurface s = test::icosphere(2, 1.0);
+  s.points[0] = -1.5 * s.points[0];  // through the centre and out the other side
+  std::vector<IndexedTriangle> t;
+  for (const Triangle& f : s.triangles) t.push_back({f[0], f[1], f[2]});
+  const auto pairs = find_triangle_intersections(s.points, t);
+  EXPECT_FALSE(pairs.empty());
+  for (const auto& pr : pairs) EXPECT_LT(pr.first, pr.second);
+  // Restricting the test to the moved vertex's triangles finds the same pairs.
+  std::vector<char> check(t.size(), 0);
+  for (std::size_t i = 0; i < t.size(); ++i) check[i] = t[i][0] == 0 || t[i][1] == 0 || t[i][2] == 0;
+  const auto restricted = find_triangle_intersections(s.points, t, &check);
+  for (const auto& pr : restricted) EXPECT_TRUE(check[pr.first] || check[pr.second]);
+  EXPECT_FALSE(restricted.empty());
+}
+
+}  // namespace
+}  // namespace blayer
+
+namespace blayer {
+namespace {
+
+// The BVH-based search must find exactly the pairs a brute-force double loop finds.
+TEST(TriangleIntersections, TreeSearchMatchesBruteForceOnRandomTriangles) {
+  std::uint64_t state = 12345;
+  auto rnd = [&]() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  std::vector<Vec3> pts;
+  std::vector<IndexedTriangle> tris;
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 c{rnd() * 4, rnd() * 4, rnd() * 4};
+    for (int k = 0; k < 3; ++k) pts.push_back(c + Vec3{rnd() - 0.5, rnd() - 0.5, rnd() - 0.5});
+    tris.push_back({3 * i, 3 * i + 1, 3 * i + 2});
+  }
+  std::vector<std::pair<int, int>> brute;
+  for (int i = 0; i < 400; ++i)
+    for (int j = i + 1; j < 400; ++j)
+      if (soup_triangles_intersect(pts, tris[i], tris[j])) brute.emplace_back(i, j);
+  ASSERT_GT(brute.size(), 10u);
+  EXPECT_EQ(find_triangle_intersections(pts, tris), brute);
+}
+
+}  // namespace
+}  // namespace blayer
