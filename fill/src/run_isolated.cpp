@@ -110,7 +110,8 @@ IsolatedOutcome run_isolated(const std::function<std::string()>& work, double ti
   while (!eof) {
     int wait_ms = kPollMilliseconds;
     if (timeout_seconds > 0.0) {
-      const double left = timeout_seconds - std::chrono::duration<double>(Clock::now() - start).count();
+      const double left =
+          timeout_seconds - std::chrono::duration<double>(Clock::now() - start).count();
       wait_ms = std::max(0, std::min(wait_ms, static_cast<int>(left * 1000.0)));
     }
     pollfd pfd{fds[0], POLLIN, 0};

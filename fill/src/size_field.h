@@ -18,9 +18,9 @@ class SizeField {
 
  private:
   struct Node {
-    Vec3 lo, hi;        // bounding box of the node's sites
-    double min_size;    // smallest h_i below the node
-    int begin, end;     // range in order_
+    Vec3 lo, hi;      // bounding box of the node's sites
+    double min_size;  // smallest h_i below the node
+    int begin, end;   // range in order_
     int left = -1, right = -1;
   };
   int build(int begin, int end);

@@ -21,6 +21,8 @@ using fill_detail::SizeField;
 using fill_detail::TetgenMesh;
 using fill_detail::TetgenPlc;
 
+constexpr double kPi = 3.14159265358979323846;
+
 // Circumradius of a regular tet of edge 1: TetGen's m switch bounds circumradii, the
 // size field speaks of edge lengths.
 constexpr double kRegularTetCircumradius = 0.6123724356957945;  // sqrt(6)/4
@@ -118,9 +120,8 @@ void check_closed_surface(const TriSurface& s, const std::string& what) {
     i = j;
   }
   if (n_open > 0)
-    throw InputError(what + " is open: " + std::to_string(n_open) +
-                     " boundary edges, first: " + first_problem +
-                     "; the tet fill needs a closed surface");
+    throw InputError(what + " is open: " + std::to_string(n_open) + " boundary edges, first: " +
+                     first_problem + "; the tet fill needs a closed surface");
   if (n_nonmanifold > 0)
     throw InputError(what + " is not edge-manifold: " + std::to_string(n_nonmanifold) +
                      " edges with more than two triangles, first: " + first_problem);
@@ -194,8 +195,10 @@ int ray_crossings(const TriSurface& s, const Vec3& p, const Vec3& dir, double le
 int inside_parity(const TriSurface& s, const Vec3& p, double length_scale) {
   // Directions with no simple rational relation to coordinate axes, so grid-aligned
   // input rarely puts a ray through an edge.
-  static const Vec3 kDirs[] = {{0.5773, 0.6133, 0.5391},  {-0.3187, 0.8419, 0.4357},
-                               {0.7071, -0.2113, -0.6747}, {-0.6019, -0.5023, 0.6213},
+  static const Vec3 kDirs[] = {{0.5773, 0.6133, 0.5391},
+                               {-0.3187, 0.8419, 0.4357},
+                               {0.7071, -0.2113, -0.6747},
+                               {-0.6019, -0.5023, 0.6213},
                                {0.1234, 0.4321, -0.8932}};
   for (const Vec3& d : kDirs) {
     const int c = ray_crossings(s, p, normalized(d), length_scale);
@@ -237,7 +240,9 @@ Farfield make_box(const Vec3& lo_env, const Vec3& hi_env, double scale, const Si
 
   // Lattice points on the box surface, numbered in lattice order.
   Farfield f;
-  auto key = [&](int i, int j, int k) { return (static_cast<long>(i) * (n[1] + 1) + j) * (n[2] + 1) + k; };
+  auto key = [&](int i, int j, int k) {
+    return (static_cast<long>(i) * (n[1] + 1) + j) * (n[2] + 1) + k;
+  };
   std::vector<int> id(static_cast<std::size_t>((n[0] + 1)) * (n[1] + 1) * (n[2] + 1), -1);
   for (int i = 0; i <= n[0]; ++i)
     for (int j = 0; j <= n[1]; ++j)
@@ -316,15 +321,15 @@ void tet_quality(const Vec3* p, double& min_dihedral, double& radius_edge) {
   Vec3 n[4];
   for (int f = 0; f < 4; ++f)
     n[f] = normalized(cross(p[kFaces[f][1]] - p[kFaces[f][0]], p[kFaces[f][2]] - p[kFaces[f][0]]));
-  min_dihedral = M_PI;
+  min_dihedral = kPi;
   for (int f = 0; f < 4; ++f)
     for (int g = f + 1; g < 4; ++g)
-      min_dihedral = std::min(min_dihedral, M_PI - angle_between(n[f], n[g]));
+      min_dihedral = std::min(min_dihedral, kPi - angle_between(n[f], n[g]));
   // Circumcentre relative to p0: solve 2 [a; b; c] x = [|a|^2; |b|^2; |c|^2].
   const Vec3 a = p[1] - p[0], b = p[2] - p[0], c = p[3] - p[0];
   const double det = dot(a, cross(b, c));
-  const Vec3 x = (norm2(a) * cross(b, c) + norm2(b) * cross(c, a) + norm2(c) * cross(a, b)) /
-                 (2.0 * det);
+  const Vec3 x =
+      (norm2(a) * cross(b, c) + norm2(b) * cross(c, a) + norm2(c) * cross(a, b)) / (2.0 * det);
   double shortest = std::numeric_limits<double>::max();
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, norm(p[i] - p[j]));
@@ -347,12 +352,12 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
   if (!(opt.growth >= 1.0) || !std::isfinite(opt.growth))
     throw InputError("fill: growth must be >= 1, got " + std::to_string(opt.growth));
   if (!(opt.quality_radius_edge > 1.0) || !std::isfinite(opt.quality_radius_edge))
-    throw InputError("fill: quality_radius_edge must be > 1 (TetGen does not terminate below), got " +
-                     std::to_string(opt.quality_radius_edge));
+    throw InputError(
+        "fill: quality_radius_edge must be > 1 (TetGen does not terminate below), got " +
+        std::to_string(opt.quality_radius_edge));
   if (!(opt.envelope_size >= 0.0) || !std::isfinite(opt.envelope_size))
     throw InputError("fill: envelope_size must be >= 0, got " + std::to_string(opt.envelope_size));
-  if (opt.max_steiner_points < 0)
-    throw InputError("fill: max_steiner_points must be >= 0");
+  if (opt.max_steiner_points < 0) throw InputError("fill: max_steiner_points must be >= 0");
   if (outside && !opt.farfield && !(opt.farfield_scale > 1.0 && std::isfinite(opt.farfield_scale)))
     throw InputError("fill: farfield_scale must be > 1, got " + std::to_string(opt.farfield_scale));
   if (!outside && opt.farfield)
@@ -387,8 +392,10 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
   const Vec3 ref = 0.5 * (lo + hi);
   for (std::size_t t = 0; t < envelope.triangles.size(); ++t) {
     const Triangle& tri = envelope.triangles[t];
-    comp_volume[comp[t]] += dot(envelope.points[tri[0]] - ref,
-                                cross(envelope.points[tri[1]] - ref, envelope.points[tri[2]] - ref)) / 6.0;
+    comp_volume[comp[t]] +=
+        dot(envelope.points[tri[0]] - ref,
+            cross(envelope.points[tri[1]] - ref, envelope.points[tri[2]] - ref)) /
+        6.0;
   }
   int n_walls = 0;
   for (int c = 0; c < n_comp; ++c) {
@@ -404,8 +411,9 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
     }
   }
   if (!outside && n_walls == 0)
-    throw InputError("fill region inside: no envelope component has normals pointing into an "
-                     "enclosed volume; the envelope faces outward, use region outside (external flow)");
+    throw InputError(
+        "fill region inside: no envelope component has normals pointing into an "
+        "enclosed volume; the envelope faces outward, use region outside (external flow)");
 
   // Size field from the envelope's local edge lengths.
   std::vector<double> h_env(envelope.points.size(), 0.0);
@@ -483,7 +491,8 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
   {
     std::vector<int> idx(local_points.size());
     std::iota(idx.begin(), idx.end(), 0);
-    std::sort(idx.begin(), idx.end(), [&](int a, int b) { return local_points[a] < local_points[b]; });
+    std::sort(idx.begin(), idx.end(),
+              [&](int a, int b) { return local_points[a] < local_points[b]; });
     for (std::size_t i = 1; i < idx.size(); ++i)
       if (local_points[idx[i]] == local_points[idx[i - 1]])
         throw InputError("two boundary points coincide at " + fmt_point(local_points[idx[i]]) +
@@ -504,7 +513,8 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
     std::array<int, 3> k = f;
     std::sort(k.begin(), k.end());
     for (std::size_t t = 0; t < n_boundary; ++t) {
-      std::array<int, 3> g{plc.triangles[3 * t], plc.triangles[3 * t + 1], plc.triangles[3 * t + 2]};
+      std::array<int, 3> g{plc.triangles[3 * t], plc.triangles[3 * t + 1],
+                           plc.triangles[3 * t + 2]};
       std::sort(g.begin(), g.end());
       if (g == k) {
         const bool env = t < envelope.triangles.size();
@@ -526,8 +536,8 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
       o = run_isolated([&plc] { return fill_detail::encode(fill_detail::run_tetgen(plc, "pdQ")); },
                        opt.timeout_seconds);
     } catch (const ChildProcessError& e) {
-      throw InputError(std::string("tetgen failed during the self-intersection check: ") + e.what() +
-                       "; check the envelope for self-intersections and slivers");
+      throw InputError(std::string("tetgen failed during the self-intersection check: ") +
+                       e.what() + "; check the envelope for self-intersections and slivers");
     }
     if (o.kind != IsolatedOutcome::Kind::kOk)
       throw InputError("tetgen failed during the self-intersection check: " + tetgen_failure(o));
@@ -536,7 +546,8 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
       std::string list;
       const std::size_t n_show = std::min<std::size_t>(3, d.faces.size() / 3);
       for (std::size_t i = 0; i < n_show; ++i)
-        list += (i ? "; " : "") + describe_local_face({d.faces[3 * i], d.faces[3 * i + 1], d.faces[3 * i + 2]});
+        list += (i ? "; " : "") +
+                describe_local_face({d.faces[3 * i], d.faces[3 * i + 1], d.faces[3 * i + 2]});
       throw InputError("the boundary intersects itself: " + std::to_string(d.faces.size() / 3) +
                        " intersecting triangles, e.g. " + list +
                        "; lower the layer thickness or fix the surface before the fill");
@@ -561,7 +572,8 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
     for (int i = 0; i < n_try && !found; ++i) {
       const Triangle& tri = envelope.triangles[tris[i]];
       const Vec3 area2 = triangle_area_vector(envelope, tri);
-      const Vec3 centroid = (envelope.points[tri[0]] + envelope.points[tri[1]] + envelope.points[tri[2]]) / 3.0;
+      const Vec3 centroid =
+          (envelope.points[tri[0]] + envelope.points[tri[1]] + envelope.points[tri[2]]) / 3.0;
       const double size = std::sqrt(0.5 * norm(area2));
       for (double depth : kHoleDepths) {
         const Vec3 seed = centroid - (depth * size) * normalized(area2);
@@ -604,7 +616,8 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
       throw InputError(std::string("tetgen failed: ") + e.what() +
                        "; check the envelope for slivers and near-touching parts");
     }
-    if (o.kind != IsolatedOutcome::Kind::kOk) throw InputError("tetgen failed: " + tetgen_failure(o));
+    if (o.kind != IsolatedOutcome::Kind::kOk)
+      throw InputError("tetgen failed: " + tetgen_failure(o));
     try {
       mesh = fill_detail::decode(o.data);
     } catch (const std::exception& e) {
@@ -620,7 +633,8 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
   for (std::size_t i = 0; i < local_points.size(); ++i)
     for (int k = 0; k < 3; ++k)
       if (mesh.points[3 * i + k] != local_points[i][k])
-        throw InputError("tetgen failed: input point " + std::to_string(i) + " came back moved or reordered");
+        throw InputError("tetgen failed: input point " + std::to_string(i) +
+                         " came back moved or reordered");
 
   // TetGen-local index -> output index.
   const std::int64_t n_far_out = static_cast<std::int64_t>(far.points.size());
@@ -671,7 +685,8 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
     result.boundary_marker.push_back(kEnvelopeMarker);
   }
   for (const Triangle& t : far.triangles) {
-    result.boundary.triangles.push_back({t[0] + static_cast<int>(n_env), t[1] + static_cast<int>(n_env),
+    result.boundary.triangles.push_back({t[0] + static_cast<int>(n_env),
+                                         t[1] + static_cast<int>(n_env),
                                          t[2] + static_cast<int>(n_env)});
     result.boundary_marker.push_back(kFarfieldMarker);
   }
@@ -683,8 +698,10 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
     static const int kOpp[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
     for (std::int64_t t = 0; t < n_tets; ++t)
       for (const auto& f : kOpp)
-        faces.push_back({sorted_key(conn[4 * t + f[0]], conn[4 * t + f[1]], conn[4 * t + f[2]]), t});
-    std::sort(faces.begin(), faces.end(), [](const FaceRef& a, const FaceRef& b) { return a.key < b.key; });
+        faces.push_back(
+            {sorted_key(conn[4 * t + f[0]], conn[4 * t + f[1]], conn[4 * t + f[2]]), t});
+    std::sort(faces.begin(), faces.end(),
+              [](const FaceRef& a, const FaceRef& b) { return a.key < b.key; });
     std::vector<FaceRef> single;
     for (std::size_t i = 0; i < faces.size();) {
       std::size_t j = i;
@@ -717,12 +734,14 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
         if (c[k] != t[0] && c[k] != t[1] && c[k] != t[2]) d = c[k];
       if (!even_permutation(c, {t[0], t[1], t[2], d}))
         throw InputError("tet fill: tets lie on the wrong side of boundary triangle " +
-                         std::to_string(bnd[i].second) + "; the hole seeds selected the wrong region");
+                         std::to_string(bnd[i].second) +
+                         "; the hole seeds selected the wrong region");
     }
     if (n_missing > 0 || single.size() != bnd.size())
-      throw InputError("tetgen failed: the tets do not conform to the boundary (" + std::to_string(n_missing) +
-                       " boundary triangles are not tet faces, " + std::to_string(single.size()) +
-                       " faces lie on the mesh boundary for " + std::to_string(bnd.size()) +
+      throw InputError("tetgen failed: the tets do not conform to the boundary (" +
+                       std::to_string(n_missing) + " boundary triangles are not tet faces, " +
+                       std::to_string(single.size()) + " faces lie on the mesh boundary for " +
+                       std::to_string(bnd.size()) +
                        " boundary triangles); TetGen split the boundary despite the Y switch");
   }
 
@@ -737,10 +756,12 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
     for (int k = 0; k < 4; ++k) p[k] = vm.points[conn[4 * t + k]];
     double dihedral, radius_edge;
     tet_quality(p, dihedral, radius_edge);
-    st.min_dihedral_deg = std::min(st.min_dihedral_deg, dihedral * 180.0 / M_PI);
+    st.min_dihedral_deg = std::min(st.min_dihedral_deg, dihedral * 180.0 / kPi);
     bool interior = true;
     for (int k = 0; k < 4; ++k) interior = interior && conn[4 * t + k] >= n_env + n_far_out;
-    if (interior) st.min_dihedral_deg_interior = std::min(st.min_dihedral_deg_interior, dihedral * 180.0 / M_PI);
+    if (interior)
+      st.min_dihedral_deg_interior =
+          std::min(st.min_dihedral_deg_interior, dihedral * 180.0 / kPi);
     st.max_radius_edge = std::max(st.max_radius_edge, radius_edge);
     st.min_tet_volume = std::min(st.min_tet_volume, det3(p[0], p[1], p[2], p[3]) / 6.0);
   }

@@ -1,10 +1,10 @@
 #include "tetgen_adapter.h"
 
+#include <tetgen.h>
+
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
-
-#include <tetgen.h>
 
 namespace blayer::fill_detail {
 namespace {
@@ -80,7 +80,8 @@ TetgenMesh run_tetgen(const TetgenPlc& plc, const std::string& switches) {
       for (int k = 0; k < 4; ++k) m.tets.push_back(out.tetrahedronlist[nc * t + k]);
   }
   if (out.trifacelist != nullptr) {
-    m.faces.assign(out.trifacelist, out.trifacelist + 3 * static_cast<std::size_t>(out.numberoftrifaces));
+    m.faces.assign(out.trifacelist,
+                   out.trifacelist + 3 * static_cast<std::size_t>(out.numberoftrifaces));
     if (out.trifacemarkerlist != nullptr)
       m.face_markers.assign(out.trifacemarkerlist, out.trifacemarkerlist + out.numberoftrifaces);
   }
@@ -89,7 +90,8 @@ TetgenMesh run_tetgen(const TetgenPlc& plc, const std::string& switches) {
 
 std::string encode(const TetgenMesh& m) {
   std::string out;
-  out.reserve(m.points.size() * 8 + (m.tets.size() + m.faces.size() + m.face_markers.size()) * 4 + 32);
+  out.reserve(m.points.size() * 8 + (m.tets.size() + m.faces.size() + m.face_markers.size()) * 4 +
+              32);
   put_array(out, m.points);
   put_array(out, m.tets);
   put_array(out, m.faces);
@@ -112,13 +114,24 @@ TetgenMesh decode(const std::string& bytes) {
 
 std::string describe_tetgen_error(int code) {
   switch (code) {
-    case 1: return "out of memory (code 1); reduce the farfield size or raise growth";
-    case 2: return "internal error (code 2); check the envelope for slivers and near-degenerate triangles";
-    case 3: return "self-intersection detected (code 3); the envelope or farfield intersects itself or each other";
-    case 4: return "very small input feature size (code 4); the envelope has points or triangles closer than TetGen's tolerance";
-    case 5: return "two very close input facets (code 5); the envelope nearly touches itself or the farfield";
-    case 10: return "input error (code 10); the PLC handed to TetGen is invalid";
-    default: return "unknown error code " + std::to_string(code);
+    case 1:
+      return "out of memory (code 1); reduce the farfield size or raise growth";
+    case 2:
+      return "internal error (code 2); check the envelope for slivers and near-degenerate "
+             "triangles";
+    case 3:
+      return "self-intersection detected (code 3); the envelope or farfield intersects itself or "
+             "each other";
+    case 4:
+      return "very small input feature size (code 4); the envelope has points or triangles closer "
+             "than TetGen's tolerance";
+    case 5:
+      return "two very close input facets (code 5); the envelope nearly touches itself or the "
+             "farfield";
+    case 10:
+      return "input error (code 10); the PLC handed to TetGen is invalid";
+    default:
+      return "unknown error code " + std::to_string(code);
   }
 }
 

@@ -8,11 +8,11 @@
 namespace blayer::fill_detail {
 
 struct TetgenPlc {
-  std::vector<double> points;       // #P by 3
-  std::vector<int> triangles;       // #F by 3, 0-based; each becomes a one-polygon facet
-  std::vector<int> markers;         // #F facet markers
-  std::vector<double> holes;        // #H by 3 hole seeds
-  std::vector<double> point_metric; // empty, or #P circumradius bounds (m switch)
+  std::vector<double> points;        // #P by 3
+  std::vector<int> triangles;        // #F by 3, 0-based; each becomes a one-polygon facet
+  std::vector<int> markers;          // #F facet markers
+  std::vector<double> holes;         // #H by 3 hole seeds
+  std::vector<double> point_metric;  // empty, or #P circumradius bounds (m switch)
 };
 
 struct TetgenMesh {

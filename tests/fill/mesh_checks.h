@@ -32,7 +32,7 @@ inline std::array<std::int64_t, 3> face_key(std::int64_t a, std::int64_t b, std:
 }
 
 struct MeshFigures {
-  long double volume = 0;        // sum of tet volumes
+  long double volume = 0;  // sum of tet volumes
   std::size_t n_nonpositive = 0;
   std::size_t n_interior_faces = 0;
 };

@@ -20,7 +20,12 @@ TEST(RunIsolated, ReturnsTheChildsResultBytes) {
 
 TEST(RunIsolated, ChildMemoryChangesDoNotReachTheCaller) {
   int value = 1;
-  run_isolated([&] { value = 2; return std::string(); }, 10);
+  run_isolated(
+      [&] {
+        value = 2;
+        return std::string();
+      },
+      10);
   EXPECT_EQ(value, 1);
 }
 
@@ -31,20 +36,24 @@ TEST(RunIsolated, ThrownIntIsReportedAsCode) {
 }
 
 TEST(RunIsolated, ThrownExceptionIsReportedWithItsMessage) {
-  const IsolatedOutcome o = run_isolated([]() -> std::string { throw std::runtime_error("bad facet"); }, 10);
+  const IsolatedOutcome o =
+      run_isolated([]() -> std::string { throw std::runtime_error("bad facet"); }, 10);
   EXPECT_EQ(o.kind, IsolatedOutcome::Kind::kThrewException);
   EXPECT_EQ(o.data, "bad facet");
 }
 
 TEST(RunIsolated, SegfaultInChildBecomesErrorWithSignalNumber) {
   try {
-    run_isolated([]() -> std::string {
-      ::raise(SIGSEGV);
-      return "unreachable";
-    }, 10);
+    run_isolated(
+        []() -> std::string {
+          ::raise(SIGSEGV);
+          return "unreachable";
+        },
+        10);
     FAIL() << "no exception";
   } catch (const ChildProcessError& e) {
-    EXPECT_NE(std::string(e.what()).find("signal " + std::to_string(SIGSEGV)), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("signal " + std::to_string(SIGSEGV)), std::string::npos)
+        << e.what();
   }
 }
 
@@ -60,9 +69,11 @@ TEST(RunIsolated, ExitWithoutResultIsAnError) {
 TEST(RunIsolated, HangingChildIsKilledAtTheTimeout) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    run_isolated([]() -> std::string {
-      for (;;) ::pause();
-    }, 0.3);
+    run_isolated(
+        []() -> std::string {
+          for (;;) ::pause();
+        },
+        0.3);
     FAIL() << "no exception";
   } catch (const ChildProcessError& e) {
     EXPECT_NE(std::string(e.what()).find("timed out"), std::string::npos) << e.what();

@@ -49,14 +49,16 @@ bool inside_convex(const TriSurface& s, const Vec3& p) {
 void print_figures(const char* name, const FillResult& r) {
   const FillStats& s = r.stats;
   std::cout << "[fill] " << name << ": tets " << s.n_tets << ", steiner " << s.n_steiner_points
-            << ", farfield points " << s.n_farfield_points << ", min dihedral " << s.min_dihedral_deg
-            << " deg, max radius-edge " << s.max_radius_edge << ", check " << s.seconds_check
-            << " s, tetgen " << s.seconds_tetgen << " s, total " << s.seconds_total << " s\n";
+            << ", farfield points " << s.n_farfield_points << ", min dihedral "
+            << s.min_dihedral_deg << " deg, max radius-edge " << s.max_radius_edge << ", check "
+            << s.seconds_check << " s, tetgen " << s.seconds_tetgen << " s, total "
+            << s.seconds_total << " s\n";
 }
 
 void expect_envelope_prefix(const FillResult& r, const TriSurface& env) {
   ASSERT_GE(r.tets.points.size(), env.points.size());
-  for (std::size_t i = 0; i < env.points.size(); ++i) EXPECT_EQ(r.tets.points[i], env.points[i]) << i;
+  for (std::size_t i = 0; i < env.points.size(); ++i)
+    EXPECT_EQ(r.tets.points[i], env.points[i]) << i;
   ASSERT_GE(r.boundary.triangles.size(), env.triangles.size());
   for (std::size_t t = 0; t < env.triangles.size(); ++t) {
     EXPECT_EQ(r.boundary.triangles[t], env.triangles[t]);
@@ -203,7 +205,8 @@ TEST(TetFill, SizeGradesFromTheEnvelopeEdgeLengthToTheFarfield) {
     const std::int64_t* n = &r.tets.connectivity[r.tets.offsets[c]];
     double longest = 0;
     for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) longest = std::max(longest, norm(r.tets.points[n[i]] - r.tets.points[n[j]]));
+      for (int j = i + 1; j < 4; ++j)
+        longest = std::max(longest, norm(r.tets.points[n[i]] - r.tets.points[n[j]]));
     const double dist = norm(centroid(r.tets, c)) - 1.0;
     if (dist < 0.5 * h) {
       near_sum += longest;
@@ -222,7 +225,7 @@ TEST(TetFill, SizeGradesFromTheEnvelopeEdgeLengthToTheFarfield) {
   // tets on a given triangle have their longest edge within a small factor of it).
   EXPECT_GT(near_mean, 0.7 * h);
   EXPECT_LT(near_mean, 2.0 * h);
-  // s(x) = h + 0.3 d reaches about 2 h + 1.8 at d = 6, 
+  // s(x) = h + 0.3 d reaches about 2 h + 1.8 at d = 6,
   EXPECT_GT(far_mean, 4.0 * near_mean);
   // Slower growth keeps more tets.
   FillOptions slow;
@@ -239,7 +242,8 @@ std::string check_fill_failures(const FillResult& r) {
     check_fill(r);
   }
   std::string all;
-  for (int i = 0; i < failures.size(); ++i) all += failures.GetTestPartResult(i).message() + std::string("\n");
+  for (int i = 0; i < failures.size(); ++i)
+    all += failures.GetTestPartResult(i).message() + std::string("\n");
   return all;
 }
 
@@ -319,7 +323,8 @@ TEST(TetFill, FarfieldNotEnclosingTheEnvelopeIsAnInputError) {
 TEST(TetFill, DuplicatePointsAndBadOptionsAreInputErrors) {
   TriSurface sphere = icosphere(1);
   sphere.points[0] = sphere.points[1];
-  EXPECT_NE(error_of(sphere, FillOptions{}).find("two boundary points coincide"), std::string::npos);
+  EXPECT_NE(error_of(sphere, FillOptions{}).find("two boundary points coincide"),
+            std::string::npos);
 
   FillOptions opt;
   opt.growth = 0.9;
@@ -331,7 +336,8 @@ TEST(TetFill, DuplicatePointsAndBadOptionsAreInputErrors) {
   opt.region = FillOptions::Region::kInside;
   const TriSurface far = icosphere(1, 5.0);
   opt.farfield = &far;
-  EXPECT_NE(error_of(flipped(icosphere(1)), opt).find("only used with region outside"), std::string::npos);
+  EXPECT_NE(error_of(flipped(icosphere(1)), opt).find("only used with region outside"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -116,19 +116,19 @@ struct FillOptions {
 struct FillStats {
   std::int64_t n_envelope_points = 0;  // envelope.points.size()
   std::int64_t n_farfield_points = 0;
-  std::int64_t n_steiner_points = 0;   // inserted by TetGen, all strictly inside the domain
+  std::int64_t n_steiner_points = 0;  // inserted by TetGen, all strictly inside the domain
   std::int64_t n_tets = 0;
-  std::int64_t n_holes = 0;            // hole points handed to TetGen (bodies)
-  double min_envelope_size = 0.0;      // min / max over envelope vertices of h_v
+  std::int64_t n_holes = 0;        // hole points handed to TetGen (bodies)
+  double min_envelope_size = 0.0;  // min / max over envelope vertices of h_v
   double max_envelope_size = 0.0;
-  double farfield_size = 0.0;          // box: its grid spacing; user farfield: max s at its points
-  double min_dihedral_deg = 0.0;       // over all tets
+  double farfield_size = 0.0;     // box: its grid spacing; user farfield: max s at its points
+  double min_dihedral_deg = 0.0;  // over all tets
   // Over tets with no boundary point: what q achieves where Y does not hold it back.
   double min_dihedral_deg_interior = 0.0;
-  double max_radius_edge = 0.0;        // max circumradius / shortest edge over all tets
-  double min_tet_volume = 0.0;         // smallest (positive) tet volume
-  double seconds_check = 0.0;          // self-intersection child
-  double seconds_tetgen = 0.0;         // meshing child, including transfer
+  double max_radius_edge = 0.0;  // max circumradius / shortest edge over all tets
+  double min_tet_volume = 0.0;   // smallest (positive) tet volume
+  double seconds_check = 0.0;    // self-intersection child
+  double seconds_tetgen = 0.0;   // meshing child, including transfer
   double seconds_total = 0.0;
 };
 
