@@ -69,29 +69,48 @@ double scaled_jacobian(CellType t, const Vec3* p) {
   return std::min(j, 1.0);
 }
 
-// Equiangle skewness of a polygon face with n = 3 or 4 nodes.
+// Cosine of the angle between a and b; both must be non-zero.
+double cosine(const Vec3& a, const Vec3& b) { return dot(a, b) / std::sqrt(norm2(a) * norm2(b)); }
+
+// Equiangle skewness of a polygon face with n = 3 or 4 nodes. The extreme corners are
+// picked by cosine and only their angles are evaluated (atan2, accurate near 0 and 180).
 double face_skewness(const Vec3* p, const detail::FaceDef& f) {
   const double ideal = f.n == 3 ? 60.0 : 90.0;
-  double lo = 180.0, hi = 0.0;
-  for (int i = 0; i < f.n; ++i) {
-    const Vec3& a = p[f.v[(i + f.n - 1) % f.n]];
+  int i_lo = 0, i_hi = 0;
+  double cos_lo = -2.0, cos_hi = 2.0;  // cosine of the smallest / largest angle
+  Vec3 u[4], w[4];
+  for (int i = 0; i < f.n && i < 4; ++i) {
     const Vec3& b = p[f.v[i]];
-    const Vec3& c = p[f.v[(i + 1) % f.n]];
-    const Vec3 u = a - b, w = c - b;
+    u[i] = p[f.v[(i + f.n - 1) % f.n]] - b;
+    w[i] = p[f.v[(i + 1) % f.n]] - b;
     // A zero-length edge makes the face collapsed: worst skew.
-    if (norm2(u) == 0.0 || norm2(w) == 0.0) return 1.0;
-    const double angle = angle_between(u, w) * kRadToDeg;
-    lo = std::min(lo, angle);
-    hi = std::max(hi, angle);
+    if (norm2(u[i]) == 0.0 || norm2(w[i]) == 0.0) return 1.0;
+    const double c = cosine(u[i], w[i]);
+    if (c > cos_lo) cos_lo = c, i_lo = i;
+    if (c < cos_hi) cos_hi = c, i_hi = i;
   }
+  const double lo = angle_between(u[i_lo], w[i_lo]) * kRadToDeg;
+  const double hi = angle_between(u[i_hi], w[i_hi]) * kRadToDeg;
   return std::clamp(std::max((hi - ideal) / (180.0 - ideal), (ideal - lo) / ideal), 0.0, 1.0);
 }
 
-// Largest angle between the normals of the two triangles of either diagonal split.
-double quad_warp_deg(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const double split_ac = angle_between(cross(b - a, c - a), cross(c - a, d - a));
-  const double split_bd = angle_between(cross(c - b, d - b), cross(d - b, a - b));
-  return std::max(split_ac, split_bd) * kRadToDeg;
+// Tracks the largest angle over vector pairs by cosine; one atan2 at the end. A pair
+// with a zero vector has no angle and is skipped.
+struct LargestAngle {
+  double cos = 2.0;
+  Vec3 a{}, b{};
+  void add(const Vec3& x, const Vec3& y) {
+    if (norm2(x) == 0.0 || norm2(y) == 0.0) return;
+    const double c = cosine(x, y);
+    if (c < cos) cos = c, a = x, b = y;
+  }
+  double degrees() const { return cos > 1.5 ? 0.0 : angle_between(a, b) * kRadToDeg; }
+};
+
+// Both diagonal splits of quad (a,b,c,d): the pairs of triangle normals.
+void add_quad_warp(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, LargestAngle* warp) {
+  warp->add(cross(b - a, c - a), cross(c - a, d - a));
+  warp->add(cross(c - b, d - b), cross(d - b, a - b));
 }
 
 double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -155,16 +174,18 @@ Vec3 cap_normal(const Vec3* p, const int* v, int n) {
 void column_metrics(const Vec3* p, const int* bottom, const int* top, int n, CellMetrics* m) {
   const Vec3 n_bottom = cap_normal(p, bottom, n);
   const Vec3 n_top = cap_normal(p, top, n);
-  double cap_edges = 0.0, column_edges = 0.0, worst = 0.0;
+  double cap_edges = 0.0, column_edges = 0.0;
+  LargestAngle worst;
   for (int i = 0; i < n; ++i) {
     cap_edges += norm(p[bottom[(i + 1) % n]] - p[bottom[i]]) + norm(p[top[(i + 1) % n]] - p[top[i]]);
     const Vec3 e = p[top[i]] - p[bottom[i]];
     column_edges += norm(e);
-    worst = std::max({worst, angle_between(e, n_bottom), angle_between(e, n_top)});
+    worst.add(e, n_bottom);
+    worst.add(e, n_top);
   }
   const double cap_mean = cap_edges / (2 * n), column_mean = column_edges / n;
   m->aspect_ratio = column_mean > 0.0 ? cap_mean / column_mean : std::numeric_limits<double>::infinity();
-  m->orthogonality_deg = worst * kRadToDeg;
+  m->orthogonality_deg = worst.degrees();
 }
 
 void edge_ratio(CellType t, const Vec3* p, CellMetrics* m) {
@@ -199,15 +220,16 @@ CellMetrics compute_cell_metrics(CellType type, const Vec3* p) {
   m.volume = cell_volume(type, p);
 
   const detail::CellFaces& cf = detail::cell_faces(type);
-  double skew = 0.0, warp = 0.0;
+  double skew = 0.0;
+  LargestAngle warp;
   for (int f = 0; f < cf.n_faces; ++f) {
     const detail::FaceDef& fd = cf.faces[f];
     const bool is_cap = f == cf.bottom_cap || f == cf.top_cap;
     if (type != CellType::kWedge || is_cap) skew = std::max(skew, face_skewness(p, fd));
-    if (fd.n == 4) warp = std::max(warp, quad_warp_deg(p[fd.v[0]], p[fd.v[1]], p[fd.v[2]], p[fd.v[3]]));
+    if (fd.n == 4) add_quad_warp(p[fd.v[0]], p[fd.v[1]], p[fd.v[2]], p[fd.v[3]], &warp);
   }
   m.skewness = skew;
-  m.twist_deg = warp;
+  m.twist_deg = warp.degrees();
 
   if (type == CellType::kWedge) {
     // (0,2,1) and (3,5,4) both have right-hand normals pointing bottom to top.
