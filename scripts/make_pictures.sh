@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Renders the README's pictures (docs/images/*.png) headless: runs three cases and slices
+# their meshes where users look first: a sharp trailing edge, a concave junction and a
+# thin slot. Needs the extras (python3-vtk9, xvfb): scripts/install-deps.sh --extras.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+bash "$root/scripts/install-deps.sh" --extras
+bash "$root/scripts/build.sh" blayer
+out="$root/out/pictures"
+mkdir -p "$out" "$root/docs/images"
+blayer="$root/build/app/blayer"
+render() { xvfb-run -a /usr/bin/python3 "$root/scripts/render_slice.py" "$@"; }
+
+"$blayer" extrude --config "$root/cases/001_onera_m6_16k/case.toml" -o "$out/m6.vtu" >/dev/null
+"$blayer" extrude --config "$root/cases/005_cylinder_on_plate/case.toml" -o "$out/cylinder.vtu" >/dev/null
+"$blayer" extrude --config "$root/cases/006_thin_slot/case.toml" -o "$out/slot.vtu" >/dev/null
+
+render "$out/m6.vtu" "$root/docs/images/m6_trailing_edge.png" --origin 0.97 0.6 0 --normal 0 1 0 \
+  --focus 0.96 0.6 0 --width 0.05 --title "ONERA M6, trailing edge at y = 0.6: 10 layers, coloured by layer"
+render "$out/cylinder.vtu" "$root/docs/images/cylinder_plate_junction.png" --origin 0.5 0 0 --normal 0 -1 0 \
+  --focus 0.58 0 0.07 --width 0.22 --title "Cylinder on plate, concave junction (slice y = 0), coloured by layer"
+render "$out/slot.vtu" "$root/docs/images/thin_slot.png" --origin 1 0.5 0.5 --normal 0 -1 0 \
+  --focus 1 0.5 0.36 --width 0.3 --title "Thin slot (0.1 wide, slice y = 0.5): fronts limited to under half the gap"
+ls -la "$root/docs/images"
