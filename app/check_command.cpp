@@ -1,10 +1,11 @@
 #include <cstdio>
-#include <map>
+#include <fstream>
 
 #include "blayer/core/errors.h"
 #include "blayer/io/vtk_io.h"
-#include "blayer/quality/cell_validity.h"
+#include "blayer/quality/mesh_check.h"
 #include "commands.h"
+#include "output_files.h"
 #include "run_timer.h"
 
 namespace blayer {
@@ -12,24 +13,36 @@ namespace blayer {
 int run_check_command(const ParamValues& params) {
   const std::string input = params.get_string("input");
   if (input.empty()) throw InputError("no mesh given (blayer check MESH.vtu)");
+  const std::string json = params.get_string("json"), bad = params.get_string("bad");
+  OutputFiles outputs;
+  const std::string json_tmp = json.empty() ? "" : outputs.stage(json);
+  const std::string bad_tmp = bad.empty() ? "" : outputs.stage(bad);
+
   RunTimer timer;
   const VolumeMeshFile file = read_volume_mesh(input);
-  const VolumeMesh& m = file.mesh;
-  std::map<std::string, long> per_type;
-  long inverted = 0, flat = 0;
-  for (std::size_t c = 0; c < m.n_cells(); ++c) {
-    Vec3 corners[8];
-    const int n = corner_count(m.cell_types[c]);
-    for (int k = 0; k < n; ++k) corners[k] = m.points[m.connectivity[m.offsets[c] + k]];
-    const Validity v = cell_validity(m.cell_types[c], corners);
-    inverted += v == Validity::kInverted;
-    flat += v == Validity::kFlat;
-    ++per_type[cell_type_name(m.cell_types[c])];
+  const double read_seconds = timer.seconds();
+  RunTimer check_timer;
+  const MeshCheckReport report = check_volume_mesh(file.mesh);
+  const double check_seconds = check_timer.seconds();
+
+  std::printf("blayer check: %s\n", input.c_str());
+  if (file.n_skipped_lower_dimension > 0)
+    std::printf("  (%d vertex, line and surface cells in the file were not checked)\n",
+                file.n_skipped_lower_dimension);
+  std::printf("%s", format_check_report(report).c_str());
+  std::printf("  time: read %.2f s, check %.2f s (%.0f cells/s)\n", read_seconds, check_seconds,
+              check_seconds > 0 ? static_cast<double>(file.mesh.n_cells()) / check_seconds : 0.0);
+
+  if (!json.empty()) std::ofstream(json_tmp) << check_report_to_json(report).dump(2) << "\n";
+  if (!bad.empty()) write_vtu(extract_bad_cells(file.mesh, report), bad_tmp);
+  outputs.commit();
+  if (!report.ok()) {
+    std::printf("INVALID: %zu inverted, %zu flat, %zu non-conforming cells\n", report.totals.inverted,
+                report.totals.flat, report.totals.non_conforming);
+    return 2;
   }
-  std::printf("blayer check: %s: %zu points, %zu cells\n", input.c_str(), m.points.size(), m.n_cells());
-  for (const auto& [name, count] : per_type) std::printf("  %-8s %ld\n", name.c_str(), count);
-  std::printf("  inverted %ld, flat %ld (%.2f s)\n", inverted, flat, timer.seconds());
-  return inverted > 0 ? 2 : 0;
+  std::printf("valid\n");
+  return 0;
 }
 
 }  // namespace blayer

@@ -145,3 +145,68 @@ TEST(Cli, CheckOfAMissingMeshIsAnInputError) {
 
 }  // namespace
 }  // namespace blayer
+
+namespace blayer {
+namespace {
+
+// One prism as legacy VTK text; `top_z` below 0 puts the top cap under the base.
+std::string one_prism_vtk(double top_z) {
+  std::string pts = "0 0 0\n1 0 0\n0 1 0\n0 0 " + std::to_string(top_z) + "\n1 0 " + std::to_string(top_z) +
+                    "\n0 1 " + std::to_string(top_z) + "\n";
+  return "# vtk DataFile Version 3.0\np\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 6 double\n" + pts +
+         "CELLS 1 7\n6 0 2 1 3 5 4\nCELL_TYPES 1\n13\n";
+}
+
+TEST(CliCheck, ValidMeshExitsZeroAndWritesJson) {
+  TempDir dir;
+  dir.write("ok.vtk", one_prism_vtk(0.5));
+  const auto r = run_blayer("check " + dir.file("ok.vtk") + " --json " + dir.file("r.json"), dir.file(""));
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  const std::string json = testing::slurp(dir.file("r.json"));
+  for (const char* key : {"\"cells\"", "\"wedge\"", "\"inverted\"", "\"flat\"", "\"non_conforming\"",
+                          "\"min_scaled_jacobian\""})
+    EXPECT_NE(json.find(key), std::string::npos) << key;
+}
+
+TEST(CliCheck, InvertedMeshExitsTwoAndWritesTheBadCells) {
+  TempDir dir;
+  dir.write("inv.vtk", one_prism_vtk(-0.5));
+  const auto r = run_blayer("check " + dir.file("inv.vtk") + " --bad " + dir.file("bad.vtu"), dir.file(""));
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("INVALID"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("bad.vtu")));
+}
+
+// Every input check through the executable: exit 1, "error:", the file named, and no
+// output file.
+TEST(CliExtrude, EveryInputProblemFailsCleanlyWithoutOutput) {
+  const std::string tet_pts = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"nan.off", "OFF\n4 4 0\n0 0 0\n1 0 0\nnan 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"},
+      {"range.off", "OFF\n4 4 0\n" + tet_pts + "3 0 2 1\n3 0 1 3\n3 1 2 9\n3 0 3 2\n"},
+      {"dup.off", "OFF\n4 5 0\n" + tet_pts + "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n3 1 0 2\n"},
+      {"degenerate.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n2 0 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"},
+      {"flipped_face.off", "OFF\n4 4 0\n" + tet_pts + "3 0 2 1\n3 0 1 3\n3 1 3 2\n3 0 3 2\n"},
+      {"fin.off", "OFF\n5 5 0\n" + tet_pts + "0.3 -1 0.3\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n3 0 1 4\n"},
+      {"unused.off", "OFF\n5 4 0\n" + tet_pts + "9 9 9\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"},
+      {"bowtie.off",
+       "OFF\n7 8 0\n" + tet_pts +
+           "-1 0 0\n0 -1 0\n0 0 -1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n3 0 4 5\n3 0 6 4\n3 4 6 5\n3 0 5 6\n"},
+      {"empty.stl", ""},
+  };
+  for (const auto& [name, text] : bad) {
+    TempDir dir;
+    dir.write(name, text);
+    const auto r = run_blayer("extrude " + dir.file(name) + " -o " + dir.file("o.vtu") + " --envelope " +
+                                  dir.file("e.vtp") + " --report " + dir.file("r.json"),
+                              dir.file(""));
+    EXPECT_EQ(r.signal, 0) << name;
+    EXPECT_EQ(r.status, 1) << name << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("error:", 0), 0u) << name << ": " << r.err;
+    EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    EXPECT_EQ(dir.entries(), 1) << name << ": output left behind";
+  }
+}
+
+}  // namespace
+}  // namespace blayer
