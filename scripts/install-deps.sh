@@ -19,7 +19,7 @@ packages=(
   zlib1g-dev
 )
 if [[ "${1:-}" == "--extras" ]]; then
-  packages+=(gmsh python3-vtk9 xvfb xauth)
+  packages+=(gmsh python3-vtk9 xvfb xauth bc time)
 fi
 
 missing=()

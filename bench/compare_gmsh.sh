@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Same-run comparison with Gmsh's plain boundary-layer extrusion (no collision, inversion
+# or corner handling) on one surface: wall time and peak memory of both, and blayer's
+# check of both meshes. Usage:
+#   bench/compare_gmsh.sh SURFACE.off[.gz] [layers=10] [ratio=1.2]
+# The first height is 2e-4 x the bounding-box diagonal. Needs gmsh
+# (scripts/install-deps.sh --extras) and a built blayer (scripts/build.sh blayer).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+surface="$1"; layers="${2:-10}"; ratio="${3:-1.2}"
+blayer="$root/build/app/blayer"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+name="$(basename "$surface")"; name="${name%%.*}"
+
+/usr/bin/python3 "$root/bench/off_to_stl.py" "$surface" "$work/$name.stl"
+h1=$(/usr/bin/python3 - "$work/$name.stl" <<'PY'
+import sys, math
+lo = [math.inf] * 3; hi = [-math.inf] * 3
+for line in open(sys.argv[1]):
+    w = line.split()
+    if w and w[0] == "vertex":
+        for k in range(3):
+            v = float(w[k + 1]); lo[k] = min(lo[k], v); hi[k] = max(hi[k], v)
+print("%.9g" % (2e-4 * math.dist(lo, hi)))
+PY
+)
+/usr/bin/python3 - "$name" "$layers" "$ratio" "$h1" > "$work/$name.geo" <<'PY'
+import sys
+name, n, r, h = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])
+acc, heights = 0.0, []
+for k in range(n):
+    acc += h * r ** k
+    heights.append("%.12g" % acc)
+print('Merge "%s.stl";' % name)
+print("Extrude { Surface{1}; Layers{ {%s}, {%s} }; Recombine; }" % (",".join(["1"] * n), ",".join(heights)))
+PY
+
+measure() {  # label, command...: prints wall seconds and peak RSS
+  local label="$1"; shift
+  /usr/bin/time -f "%e %M" -o "$work/time.txt" "$@" > "$work/$label.log" 2>&1 || true
+  read -r secs kb < "$work/time.txt"
+  printf "%-8s wall %8.2f s   peak RSS %8.1f MB\n" "$label" "$secs" "$(echo "$kb / 1024" | bc -l)"
+  echo "$secs" > "$work/$label.secs"
+}
+
+echo "surface $surface: N=$layers h1=$h1 r=$ratio"
+(cd "$work" && measure gmsh gmsh "$name.geo" -3 -format vtk -o "$work/gmsh.vtk")
+measure blayer "$blayer" extrude "$surface" -o "$work/blayer.vtu" --layers "$layers" --first-height "$h1" \
+  --growth-ratio "$ratio"
+echo "ratio blayer/gmsh wall time: $(echo "$(cat "$work/blayer.secs") / $(cat "$work/gmsh.secs")" | bc -l | cut -c1-5)"
+echo "--- blayer check of Gmsh's mesh:"
+"$blayer" check "$work/gmsh.vtk" | grep -E "^(cells:|inverted:|min_corner)" || true
+echo "--- blayer check of blayer's mesh:"
+"$blayer" check "$work/blayer.vtu" | grep -E "^(cells:|inverted:|min_corner)" || true
+grep -E "^(coverage|columns|time)" "$work/blayer.log" || true
