@@ -88,6 +88,7 @@ void check_params(const ExtrusionParams& p) {
   auto fail = [](const std::string& m) { throw InputError("extrusion parameters: " + m); };
   if (p.normal_smoothing_iterations < 0) fail("normal_smoothing_iterations must be >= 0");
   if (p.height_smoothing_rings < 0) fail("height_smoothing_rings must be >= 0");
+  if (p.direction_repair_passes < 0) fail("direction_repair_passes must be >= 0");
   if (!(p.proximity_safety > 0.0 && p.proximity_safety <= 0.5))
     fail("proximity_safety must be in (0, 0.5] (two fronts growing towards each other meet in the middle)");
   if (!(p.max_height_to_edge_ratio >= 0.0) || !std::isfinite(p.max_height_to_edge_ratio))
@@ -132,6 +133,7 @@ void smooth_downward(const Csr& nbr, const std::vector<char>& mask, int rings, s
 // Step directions on a front: point normals, optionally smoothed without losing
 // visibility, and their visibility against the incident front faces.
 struct Directions {
+  std::vector<Vec3> face_normal;  // unit normals of the front's triangles
   std::vector<Vec3> n;
   std::vector<double> visibility;
   std::vector<char> ok;  // a usable (visible, non-degenerate) direction exists
@@ -151,6 +153,7 @@ Directions compute_directions(const TriSurface& front, const VertexFans& fans, c
 
   const PointNormals pn = compute_point_normals(front, fans, p.normal_method);
   Directions d;
+  d.face_normal = fn;
   d.n = pn.normal;
   d.visibility.assign(nv, 0.0);
   d.ok.assign(nv, 0);
@@ -188,6 +191,12 @@ Directions compute_directions(const TriSurface& front, const VertexFans& fans, c
     d.visibility.swap(next_vis);
   }
   return d;
+}
+
+double visibility_of(const Directions& d, const Csr& vtri, int v, const Vec3& n) {
+  double m = 1.0;
+  for (const int* t = vtri.begin(v); t != vtri.end(v); ++t) m = std::min(m, dot(n, d.face_normal[*t]));
+  return m;
 }
 
 // Distance along the unit direction dir from o to the triangle (a,b,c), or +inf when
@@ -280,13 +289,22 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   std::vector<char> used(nv, 0);
   for (int v = 0; v < nv; ++v) used[v] = vtri.begin(v) != vtri.end(v);
 
-  std::vector<double> edge(nv, 0.0);  // mean length of the wall edges at v
+  // Mean and shortest length of the wall edges at v. Relative heights use the mean (the
+  // vertex's size); the height cap uses the shortest, because on stretched triangles the
+  // short side is the distance over which neighbouring columns must not overtake each
+  // other sideways.
+  std::vector<double> edge(nv, 0.0), short_edge(nv, 0.0);
   parallel_vertices(nv, [&](int v) {
     const int k = static_cast<int>(nbr.end(v) - nbr.begin(v));
     if (k == 0) return;
-    double s = 0.0;
-    for (const int* u = nbr.begin(v); u != nbr.end(v); ++u) s += norm(wall.points[*u] - wall.points[v]);
+    double s = 0.0, m = HUGE_VAL;
+    for (const int* u = nbr.begin(v); u != nbr.end(v); ++u) {
+      const double l = norm(wall.points[*u] - wall.points[v]);
+      s += l;
+      m = std::min(m, l);
+    }
     edge[v] = s / k;
+    short_edge[v] = m;
   });
   // base[v] * heights[k] is the target height of layer k in column v.
   std::vector<double> base(nv, 1.0);
@@ -297,7 +315,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   if (params.max_height_to_edge_ratio > 0.0) {
     parallel_vertices(nv, [&](int v) {
       const double target = base[v] * rep.growth.total_thickness;
-      const double cap = params.max_height_to_edge_ratio * edge[v];
+      const double cap = params.max_height_to_edge_ratio * short_edge[v];
       if (used[v] && target > cap) {
         scale[v] = cap / target;
         capped[v] = 1;
@@ -359,7 +377,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
 
   TriSurface front;
   front.triangles = wall.triangles;
-  std::vector<double> step(nv), phi(nv);
+  std::vector<double> step(nv), phi(nv), layer_h(nv);
   std::vector<StopReason> phi_reason(nv);
   std::vector<char> grows(nv), bad(nv);
   std::vector<Vec3> next(nv);
@@ -382,8 +400,8 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     for (int v = 0; v < nv; ++v) active[v] = !stopped[v];
     parallel_vertices(nv, [&](int v) {
       if (!active[v]) return;
-      const double h = base[v] * scale[v] * rep.growth.heights[k];
-      step[v] = h / std::max(dirs.visibility[v], 1.0 / params.max_step_stretch);
+      layer_h[v] = base[v] * scale[v] * rep.growth.heights[k];
+      step[v] = layer_h[v] / std::max(dirs.visibility[v], 1.0 / params.max_step_stretch);
       phi[v] = 1.0;
       phi_reason[v] = StopReason::kProximity;
     });
@@ -408,7 +426,8 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     // ---- exact checks with local height reduction ----
     t0 = Clock::now();
     for (int v = 0; v < nv; ++v) grows[v] = !stopped[v];
-    for (;;) {
+    std::vector<char> bad_tri(nf);
+    for (int attempt = 0;; ++attempt) {
       parallel_vertices(nv, [&](int v) {
         next[v] = grows[v] ? top[v] + (phi[v] * step[v]) * dirs.n[v] : top[v];
       });
@@ -430,6 +449,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
         }
         if (cell_validity(cell.type, c) != Validity::kValid) bad_cell[f] = 1;
       });
+      bad_tri = bad_cell;
       for (int f = 0; f < nf; ++f)
         if (bad_cell[f])
           for (int v : wall.triangles[f])
@@ -467,15 +487,52 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
         const auto pairs = find_triangle_intersections(soup_points, soup, &soup_check);
         for (const auto& pr : pairs)
           for (int i : {pr.first, pr.second})
-            if (static_cast<std::size_t>(i) >= first_new)
+            if (static_cast<std::size_t>(i) >= first_new) {
+              bad_tri[i - first_new] = 1;
               for (int v : wall.triangles[i - first_new])
                 if (grows[v]) {
                   bad[v] = 1;
                   if (bad_reason[v] == StopReason::kNone) bad_reason[v] = StopReason::kCollision;
                 }
+            }
       }
 
       if (std::find(bad.begin(), bad.end(), 1) == bad.end()) break;
+
+      // First repair: failing cells and colliding triangles mostly come from neighbouring
+      // columns that diverge sideways by more than a short edge (thin triangles, mild
+      // concavity). Turning each such column towards the mean direction of the failing
+      // triangles around it removes that shear at full height, where halving the step
+      // would only scale it. A turned direction must keep half of the column's
+      // visibility (and min_visibility), so the step stays well above the front.
+      if (attempt < params.direction_repair_passes) {
+        std::vector<char> turned(nv, 0);
+        std::vector<Vec3> new_n = dirs.n;
+        std::vector<double> new_vis = dirs.visibility;
+        parallel_vertices(nv, [&](int v) {
+          if (!bad[v]) return;
+          Vec3 sum{0.0, 0.0, 0.0};
+          for (const int* f = vtri.begin(v); f != vtri.end(v); ++f)
+            if (bad_tri[*f])
+              for (int u : wall.triangles[*f])
+                if (grows[u]) sum += dirs.n[u];
+          const Vec3 cand = normalized(sum);
+          if (!(norm2(cand) > 0.0)) return;
+          const double vis = visibility_of(dirs, vtri, v, cand);
+          if (vis >= params.min_visibility && vis >= 0.5 * dirs.visibility[v] && dot(cand, dirs.n[v]) < 1.0) {
+            new_n[v] = cand;
+            new_vis[v] = vis;
+            turned[v] = 1;
+          }
+        });
+        if (std::find(turned.begin(), turned.end(), 1) != turned.end()) {
+          dirs.n.swap(new_n);
+          dirs.visibility.swap(new_vis);
+          for (int v = 0; v < nv; ++v)
+            if (turned[v]) step[v] = layer_h[v] / std::max(dirs.visibility[v], 1.0 / params.max_step_stretch);
+          continue;
+        }
+      }
       for (int v = 0; v < nv; ++v)
         if (bad[v]) {
           phi[v] *= 0.5;

@@ -184,7 +184,7 @@ TEST(ExtrudeLayers, RelativeHeightsScaleWithTheLocalEdgeLength) {
 
 TEST(ExtrudeLayers, HeightCapKeepsAllLayersButThinsThem) {
   const TriSurface wall = test::icosphere(2, 1.0);
-  ExtrusionParams p = params(4, 0.1, 1.2);  // total 0.54, mean edge ~0.27: ratio 2
+  ExtrusionParams p = params(4, 0.1, 1.2);  // total 0.54, edges ~0.27: ratio 2
   p.max_height_to_edge_ratio = 0.5;
   const ExtrusionResult r = extrude_layers(wall, p);
   expect_valid_extrusion(wall, r);
