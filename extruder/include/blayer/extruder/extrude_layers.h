@@ -21,9 +21,10 @@
 //      column keeps its layers, and are smoothed downward over height_smoothing_rings.
 //   1. On the current front (same triangles, current column tops) point normals are
 //      recomputed with compute_point_normals (normal_method), and optionally smoothed
-//      with neighbours; a smoothed direction is kept only if its visibility
-//      V = min_i n.f_i over the incident front faces does not drop below the unsmoothed
-//      one's (and below min_visibility).
+//      with neighbours (Jacobi passes; the full, half or quarter blend towards the
+//      neighbour average, whichever comes first); a smoothed direction is kept only if
+//      its visibility V = min_i n.f_i over the incident front faces does not drop below
+//      the unsmoothed one's (and below min_visibility).
 //   2. Step s = h / V, so the new point is h above every incident face plane (1/V capped
 //      at max_step_stretch). A column with V < min_visibility stops (visibility).
 //   3. Proximity: the step segment, extended to s / proximity_safety, is intersected with
