@@ -127,6 +127,30 @@ TEST(ExtrudeLayers, CubeConvexEdgesAndCornersAreCovered) {
   EXPECT_GE(r.report.total_thickness.min, 0.99 * r.report.growth.total_thickness);
 }
 
+TEST(ExtrudeLayers, StoppedColumnsCloseWithPyramidsAndTets) {
+  // With min_visibility 0.75 the cube's edge (V = cos 45) and corner (V = cos 54.7)
+  // columns cannot start; the face columns grow, and the layer closes conformingly.
+  const TriSurface wall = test::voxel_surface({4, 4, 4}, [](int, int, int) { return true; }, 0.25);
+  ExtrusionParams p = params(3, 0.01, 1.2);
+  p.min_visibility = 0.75;
+  const ExtrusionResult r = extrude_layers(wall, p);
+  expect_valid_extrusion(wall, r);
+  const int n_edge_and_corner = 12 * 3 + 8;
+  EXPECT_EQ(r.report.stopped_columns[static_cast<int>(StopReason::kVisibility)], n_edge_and_corner);
+  for (std::size_t v = 0; v < wall.points.size(); ++v) {
+    const Vec3& q = wall.points[v];
+    int on_faces = 0;
+    for (int i = 0; i < 3; ++i) on_faces += (q[i] == 0.0 || q[i] == 1.0);
+    EXPECT_EQ(r.column_layers[v], on_faces >= 2 ? 0 : 3) << "vertex " << v;
+  }
+  EXPECT_GT(r.report.n_pyramids, 0);
+  EXPECT_GT(r.report.n_tets, 0);
+  EXPECT_LT(r.report.coverage, 1.0);
+  const DataArray* reason = r.mesh.find_point_array("stop_reason");
+  ASSERT_NE(reason, nullptr);
+  EXPECT_EQ(reason->values[0], static_cast<double>(r.stop_reason[0]));
+}
+
 TEST(ExtrudeLayers, LBlockConcaveEdgeStaysValid) {
   const TriSurface wall =
       test::voxel_surface({4, 2, 4}, [](int i, int, int k) { return !(i >= 2 && k >= 2); }, 0.25);
