@@ -28,6 +28,41 @@ constexpr double kConstraintSlack = 1e-12;
 // only when the exact arctangent comparison would as well): a few ulps of values <= 1.
 constexpr double kCheapTestMargin = 1e-15;
 
+// Slowest fall-off rate (radians of D per radian of motion) of the link-vertex bound
+// around its maximiser for which the bound shortcut is taken beyond convex corners:
+// directions within normality_tie of the optimum then lie within 1e-9 / 1e-2 = 1e-7 rad
+// of it, an order inside kDistinctMaximizers, so the enumeration could not find a
+// distinct near-tie there either.
+constexpr double kSharpFalloff = 1e-2;
+
+// Link vertices whose angle to the cap antipode is within this of the bound count as
+// holding the cap; including extra ones only lowers the bound, which stays valid.
+constexpr double kCapSupportSlack = 1e-10;
+
+// Slowest rate at which g(n) = min_j angle(n, u_j) falls off around n0 = -cap.normal,
+// its maximiser. Near n0 g is the minimum of the concave angles to the vertices u_j at
+// the bound (all beyond pi/2), so it lies below its tangent cone, whose slowest slope is
+// cos(phi/2) for the widest angular gap phi between the projected u_j at n0 (0 when a
+// gap reaches pi: flat to first order).
+double cap_falloff(const FanGeometry& g, const MostVisibleResult& cap) {
+  const Vec3 n0 = -cap.normal;
+  Vec3 e1, e2;
+  detail::orthonormal_complement(n0, &e1, &e2);
+  constexpr int kMaxSupport = 16;
+  double az[kMaxSupport];
+  int m = 0;
+  for (const Vec3& u : g.dirs)
+    if (dot(cap.normal, u) <= cap.visibility + kCapSupportSlack) {
+      if (m == kMaxSupport) return 0.0;
+      az[m++] = std::atan2(dot(u, e2), dot(u, e1));
+    }
+  if (m < 3) return 0.0;
+  std::sort(az, az + m);
+  double widest = az[0] + 2.0 * M_PI - az[m - 1];
+  for (int i = 1; i < m; ++i) widest = std::max(widest, az[i] - az[i - 1]);
+  return widest >= M_PI ? 0.0 : std::cos(0.5 * widest);
+}
+
 struct Arc {
   Vec3 u, v, g;
 };
@@ -40,7 +75,7 @@ struct Maximizer {
 
 class Solver {
  public:
-  Solver(const FanGeometry& g, const Tolerances& tol) : g_(g), tol_(tol) {}
+  Solver(const FanGeometry& g, const Tolerances& tol, bool shortcuts) : g_(g), tol_(tol), shortcuts_(shortcuts) {}
 
   MostNormalResult run(bool constrain_visibility);
 
@@ -57,6 +92,7 @@ class Solver {
 
   const FanGeometry& g_;
   const Tolerances& tol_;
+  const bool shortcuts_;
   std::vector<Arc> arcs_;
   std::vector<Vec3> pts_;
   double v_min_ = 0.0;
@@ -365,15 +401,25 @@ MostNormalResult Solver::run(bool constrain_visibility) {
   v_min_ = 0.5 * mv.visibility;
   const bool all_reflex = build_sites();
   consider(mv.normal);
-  if (!pts_.empty() && all_reflex) {
-    // Convex solid corner: D(n) is the distance to the solid cone, largest at the
-    // antipode of the smallest cap holding the link vertices.
+  if (!pts_.empty() && shortcuts_) {
+    // Every link vertex lies on the link, so D(n) <= min_j angle(n, u_j) for every n,
+    // and the right side is largest, at `target`, at the antipode of the smallest cap
+    // holding the link vertices. A fluid, feasible direction reaching the bound is
+    // optimal. This holds for any link; it is reached at convex solid corners (all
+    // junctions reflex) and whenever D* > pi/2, where the antipode sees every link
+    // vertex at more than 90 degrees, so no arc interior is nearer than its ends.
     const MostVisibleResult cap = most_visible_normal(g_.dirs.data(), k, tol_);
     if (cap.feasible) {
       const double target = M_PI - std::atan2(std::sqrt(std::max(0.0, 1.0 - cap.visibility * cap.visibility)),
                                               cap.visibility);
       consider(-cap.normal);
-      if (best_c_ >= target - tol_.normality_tie && best_u_ <= best_c_ + tol_.normality_tie && !maxima_.empty()) {
+      // Beyond convex corners the bound is used only where D falls off steeply around
+      // the optimum, so that no distinct direction comes within the tie band. Where it
+      // is flat (two link vertices hold the cap: second order along their bisector) the
+      // enumeration may find distinct near-ties and break them by V.
+      const bool sharp = all_reflex || cap_falloff(g_, cap) >= kSharpFalloff;
+      if (sharp && best_c_ >= target - tol_.normality_tie && best_u_ <= best_c_ + tol_.normality_tie &&
+          !maxima_.empty()) {
         const Maximizer& m = maxima_.back();
         r.normal = m.n;
         r.normality = m.d;
@@ -413,7 +459,12 @@ MostNormalResult Solver::run(bool constrain_visibility) {
 }  // namespace
 
 MostNormalResult most_normal_normal(const FanGeometry& g, const Tolerances& tol, bool constrain_visibility) {
-  Solver solver(g, tol);
+  Solver solver(g, tol, true);
+  return solver.run(constrain_visibility);
+}
+
+MostNormalResult most_normal_by_enumeration(const FanGeometry& g, const Tolerances& tol, bool constrain_visibility) {
+  Solver solver(g, tol, false);
   return solver.run(constrain_visibility);
 }
 

@@ -12,8 +12,10 @@
 //      (kDegenerateFan).
 //   3. Sites: link arcs merged along common great circles (|f_i.v_{i+1}| <=
 //      tol.coplanar_arc, merged length < pi) and reflex link vertices (f_i.v_{i+1} < 0).
-//      No reflex vertex: MN = MV. All junctions reflex (convex solid corner): MN is the
-//      antipode of the smallest cap holding the link vertices.
+//      No reflex vertex: MN = MV. Otherwise, since D(n) <= min_j angle(n, u_j), the
+//      antipode of the smallest cap holding the link vertices is MN when it is fluid,
+//      feasible and its D reaches that bound (convex solid corners, and every fan with
+//      D* > pi/2, e.g. each vertex of a smoothly convex region).
 //   4. Otherwise every 1-, 2- and 3-site critical point of the Voronoi diagram of the
 //      sites is a candidate (poles, antipodes, bisector peaks, point-arc parabola
 //      extrema, Voronoi vertices); candidates outside R are discarded by the
@@ -48,5 +50,10 @@ struct MostNormalResult {
 
 MostNormalResult most_normal_normal(const FanGeometry& g, const Tolerances& tol = default_tolerances(),
                                     bool constrain_visibility = true);
+
+// The same optimum by the candidate enumeration of step 4 alone, without the shortcut
+// of step 3 (reference for tests of the shortcut; same answer up to normality_tie).
+MostNormalResult most_normal_by_enumeration(const FanGeometry& g, const Tolerances& tol = default_tolerances(),
+                                            bool constrain_visibility = true);
 
 }  // namespace blayer

@@ -1,0 +1,101 @@
+// The most-normal shortcuts against the plain candidate enumeration
+// (most_normal_by_enumeration) on the fans they are meant for: convex corners and
+// vertices of smoothly convex, nearly developable surfaces (wing skins), where some
+// junctions are not reflex yet D* > pi/2, plus the generic random shapes, where the
+// shortcut must stay out of the way.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "blayer/normals/most_normal.h"
+#include "random_fans.h"
+#include "test_fans.h"
+
+namespace blayer {
+namespace {
+
+using testing_fans::Shape;
+
+// A candidate within normality_tie of the optimum lies within tie / kSharpFalloff of it
+// (most_normal.cpp): the two answers may differ by that much in direction, no more.
+constexpr double kSameDirection = 1e-7;
+
+// Vertex of z = -(k1 x^2 + k2 y^2) / 2 with a jittered ring: k2 near 0 gives the
+// spanwise flatness of a wing, where rounding of the mesh makes some edges concave.
+std::vector<Vec3> skin_fan(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int k = 4 + static_cast<int>(u(rng) * 6);
+  const double k1 = 0.05 + u(rng), k2 = 1e-3 * u(rng);
+  const double jitter = 1e-3 * u(rng);
+  std::vector<Vec3> ring;
+  double az = u(rng) * 2 * M_PI;
+  for (int i = 0; i < k; ++i) {
+    const double r = 0.5 + u(rng);
+    const double x = r * std::cos(az), y = r * std::sin(az);
+    ring.push_back({x, y, -0.5 * (k1 * x * x + k2 * y * y) + jitter * (u(rng) - 0.5)});
+    az += 2 * M_PI / k * (0.7 + 0.6 * u(rng));
+  }
+  Vec3 q[3];
+  testing_fans::random_rotation(rng, q);
+  for (Vec3& x : ring) x = testing_fans::rotate(x, q);
+  return ring;
+}
+
+bool all_junctions_reflex(const FanGeometry& g) {
+  const int k = g.n_faces();
+  for (int j = 0; j < k; ++j)
+    if (!(dot(g.face_normals[(j + k - 1) % k], g.dirs[(j + 1) % k]) < -default_tolerances().coplanar_arc))
+      return false;
+  return true;
+}
+
+// Compares the two solvers on one fan; returns whether the shortcut answered.
+bool expect_same(const FanGeometry& g, bool constrained, const std::string& what) {
+  const MostNormalResult fast = most_normal_normal(g, default_tolerances(), constrained);
+  const MostNormalResult full = most_normal_by_enumeration(g, default_tolerances(), constrained);
+  EXPECT_EQ(fast.status, full.status) << what;
+  EXPECT_NEAR(fast.normality, full.normality, default_tolerances().normality_tie) << what;
+  if (fast.status == NormalStatus::kOk) {
+    EXPECT_LE(angle_between(fast.normal, full.normal), kSameDirection) << what;
+  } else {
+    EXPECT_GE(fast.visibility, full.visibility - kSameDirection) << what;
+  }
+  return fast.n_candidates < full.n_candidates;
+}
+
+TEST(MostNormalShortcut, MatchesEnumerationOnConvexSkins) {
+  std::mt19937 rng(2024);
+  int shortcut_not_all_reflex = 0, n = 0;
+  for (int t = 0; t < 3000; ++t) {
+    const FanGeometry g = testing_fans::geometry(skin_fan(rng));
+    if (g.any_degenerate) continue;
+    ++n;
+    for (bool constrained : {false, true}) {
+      const bool shortcut = expect_same(g, constrained, "skin fan " + std::to_string(t));
+      if (shortcut && !all_junctions_reflex(g)) ++shortcut_not_all_reflex;
+    }
+  }
+  EXPECT_GT(n, 2500);
+  // The generator must exercise the shortcut beyond convex corners.
+  EXPECT_GT(shortcut_not_all_reflex, 500);
+}
+
+TEST(MostNormalShortcut, MatchesEnumerationOnRandomShapes) {
+  for (Shape shape : {Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kSliver, Shape::kWild}) {
+    std::mt19937 rng(99u + static_cast<unsigned>(shape));
+    for (int t = 0; t < 100; ++t) {
+      const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, shape));
+      if (g.any_degenerate) continue;
+      for (bool constrained : {false, true})
+        expect_same(g, constrained, std::string(testing_fans::shape_name(shape)) + " fan " + std::to_string(t));
+    }
+  }
+}
+
+TEST(MostNormalShortcut, MatchesEnumerationOnPublicFans) {
+  for (const testing_fans::TestFan& f : testing_fans::public_fans())
+    expect_same(testing_fans::geometry(f.ring), true, f.name);
+}
+
+}  // namespace
+}  // namespace blayer
