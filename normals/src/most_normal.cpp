@@ -178,13 +178,16 @@ void Solver::consider(Vec3 n) {
   if (!(len > 0.0) || !std::isfinite(len)) return;
   n = n / len;
   ++n_candidates_;
+  // The distance test runs first, against the lower of the two thresholds (best_c_ <=
+  // best_u_), since it rejects most candidates; V is needed only for the survivors. A
+  // candidate it passes has its exact D, then meets the threshold of its feasibility.
+  double d;
+  bool fluid;
+  if (!evaluate(n, best_c_ - tol_.normality_tie, &d, &fluid) || !fluid) return;
   const double v = fan_visibility(g_, n);
   const bool feasible = !constrained_ || v >= v_min_ - kConstraintSlack;
   if (constrained_pass_ && !feasible) return;
-  const double thr = (feasible ? best_c_ : best_u_) - tol_.normality_tie;
-  double d;
-  bool fluid;
-  if (!evaluate(n, thr, &d, &fluid) || !fluid) return;
+  if (!feasible && d < best_u_ - tol_.normality_tie) return;
   if (d > best_u_) {
     best_u_ = d;
     maxima_u_.erase(std::remove_if(maxima_u_.begin(), maxima_u_.end(),
