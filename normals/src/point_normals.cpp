@@ -71,12 +71,13 @@ PointNormals compute_point_normals(const TriSurface& s, const VertexFans& fans, 
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, std::min(nv, fans.fans.size()), 256),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       std::vector<Vec3> ring;
+                      FanGeometry g;
                       for (std::size_t v = range.begin(); v != range.end(); ++v) {
                         const VertexFan& fan = fans.fans[v];
                         if (fan.triangles.empty()) continue;
                         ring.clear();
                         for (int r : fan.ring) ring.push_back(s.points[r]);
-                        const FanGeometry g = build_fan_geometry(s.points[v], ring, fan.closed, tol);
+                        build_fan_geometry(s.points[v], ring, fan.closed, tol, &g);
                         const VertexNormal vn = compute_vertex_normal(g, method, tol);
                         out.normal[v] = vn.normal;
                         out.visibility[v] = vn.visibility;

@@ -41,6 +41,11 @@ struct FanGeometry {
 FanGeometry build_fan_geometry(const Vec3& p, const std::vector<Vec3>& ring, bool closed,
                                const Tolerances& tol = default_tolerances());
 
+// The same into *out, reusing its storage (one FanGeometry per thread for a loop over
+// vertices).
+void build_fan_geometry(const Vec3& p, const std::vector<Vec3>& ring, bool closed, const Tolerances& tol,
+                        FanGeometry* out);
+
 // V(n) = min_i n.f_i over non-degenerate faces (+infinity for a fan with none).
 double fan_visibility(const FanGeometry& g, const Vec3& n);
 
