@@ -54,8 +54,9 @@ ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, s
   e.max_step_stretch = p.get_real("max-step-stretch");
   e.min_layer_fraction = p.get_real("min-layer-fraction");
   e.check_collisions = p.get_bool("collision-check");
-  if (e.normal_smoothing_iterations < 0 || e.height_smoothing_rings < 0)
-    throw InputError("--normal-smoothing and --height-smoothing-rings must be >= 0");
+  e.direction_repair_passes = p.get_int("direction-repair-passes");
+  if (e.normal_smoothing_iterations < 0 || e.height_smoothing_rings < 0 || e.direction_repair_passes < 0)
+    throw InputError("--normal-smoothing, --height-smoothing-rings and --direction-repair-passes must be >= 0");
   if (!(e.proximity_safety > 0.0 && e.proximity_safety <= 1.0))
     throw InputError("--proximity-safety must be in (0, 1]");
   if (!(e.min_visibility > 0.0 && e.min_visibility < 1.0)) throw InputError("--min-visibility must be in (0, 1)");

@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include "blayer/core/errors.h"
+#include "blayer/extruder/extrude_layers.h"
 
 namespace blayer {
 
@@ -80,9 +81,20 @@ std::string validate(const ParamSpec& p, const std::string& text, const std::str
   return text;
 }
 
+// A default taken from the library's own parameter struct, so that the table, --help and
+// the README cannot drift from what the engine does.
+std::string default_of(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+std::string default_of(int v) { return std::to_string(v); }
+std::string default_of(bool v) { return v ? "true" : "false"; }
+
 }  // namespace
 
 const std::vector<ParamSpec>& parameter_table() {
+  static const ExtrusionParams ex{};
   static const std::vector<ParamSpec> table = {
       {"input", ParamType::kPath, "", "", "surface file (STL, OBJ, OFF, PLY, VTP, VTK; optionally .gz) or, for check, a volume mesh (.vtu, .vtk)", kAll},
       {"output", ParamType::kPath, "", "", "output file: .vtp for normals, .vtu for extrude (default for extrude: <input name>_layers.vtu in the current directory)", kSurfaceCmds, "", 'o'},
@@ -90,20 +102,21 @@ const std::vector<ParamSpec>& parameter_table() {
       {"side", ParamType::kString, "outward", "", "side the layers grow on: outward (external flow) or inward (internal flow: pipes, arteries); closed surfaces oriented the other way are flipped", kSurfaceCmds, "outward|inward"},
       {"allow-open", ParamType::kBool, "false", "", "accept a surface with boundary edges (holes); layers grow on the side its triangles' normals point to", kSurfaceCmds},
       {"method", ParamType::kString, "most-normal", "", "point normal method: most-normal (maximises the minimum angle to the incident triangles), most-visible (maximises min n.f), or a weighted average: angle, area, unit, inverse-area, max", kSurfaceCmds, "most-normal|most-visible|angle|area|unit|inverse-area|max"},
-      {"layers", ParamType::kInt, "10", "", "number of prism layers per column before any local limiting", kExtrudeCmd},
+      {"layers", ParamType::kInt, default_of(ex.growth.layers), "", "number of prism layers per column before any local limiting", kExtrudeCmd},
       {"first-height", ParamType::kReal, "", "length", "height of the first (wall) layer; default: 2e-4 x the bounding-box diagonal unless two of total-thickness, last-height, growth-ratio are given", kExtrudeCmd},
-      {"growth-ratio", ParamType::kReal, "", "", "ratio of consecutive layer heights; give N and any two of first-height, last-height, total-thickness, growth-ratio; with only one height given the ratio is 1.2", kExtrudeCmd},
+      {"growth-ratio", ParamType::kReal, "", "", "ratio of consecutive layer heights; give N and any two of first-height, last-height, total-thickness, growth-ratio; with only one height given the ratio is " + default_of(kDefaultGrowthRatio), kExtrudeCmd},
       {"total-thickness", ParamType::kReal, "", "length", "total height of all layers", kExtrudeCmd},
       {"last-height", ParamType::kReal, "", "length", "height of the last (outermost) layer", kExtrudeCmd},
       {"relative-heights", ParamType::kBool, "false", "", "read first-height, total-thickness and last-height as multiples of the local mean edge length at each vertex", kExtrudeCmd},
-      {"normal-smoothing", ParamType::kInt, "2", "", "smoothing passes over the step directions on every front (a smoothed direction is kept only if it sees its faces at least as well); 0: none", kExtrudeCmd},
-      {"height-smoothing-rings", ParamType::kInt, "3", "", "rings of neighbours over which a locally reduced height ramps back to full height, so limited spots leave no step; 0: none", kExtrudeCmd},
-      {"proximity-safety", ParamType::kReal, "0.45", "", "a column may cover at most this fraction of the gap to another wall or front ahead of it (<= 0.5: facing fronts meet halfway)", kExtrudeCmd},
-      {"max-height-to-edge", ParamType::kReal, "2", "", "cap on a column's total height relative to the mean length of the wall edges at its vertex, so small faces grow no needles; 0: no cap", kExtrudeCmd},
-      {"min-visibility", ParamType::kReal, "0.05", "", "smallest accepted min over incident faces of n.f (0.05 = 87 deg between the step and a face normal); below it a column stops", kExtrudeCmd},
-      {"max-step-stretch", ParamType::kReal, "5", "", "cap on the step stretch 1/V that keeps a layer's height above every incident face plane", kExtrudeCmd},
-      {"min-layer-fraction", ParamType::kReal, "0.25", "", "a layer cut below this fraction of its height stops its column instead (no sliver layers)", kExtrudeCmd},
-      {"collision-check", ParamType::kBool, "true", "", "exact intersection check of every new front against itself, the previous front and the wall (--collision-check=false: faster, no guarantee)", kExtrudeCmd},
+      {"normal-smoothing", ParamType::kInt, default_of(ex.normal_smoothing_iterations), "", "smoothing passes over the step directions on every front (a smoothed direction is kept only if it sees its faces at least as well); 0: none", kExtrudeCmd},
+      {"height-smoothing-rings", ParamType::kInt, default_of(ex.height_smoothing_rings), "", "rings of neighbours over which a locally reduced height ramps back to full height, so limited spots leave no step; 0: none", kExtrudeCmd},
+      {"proximity-safety", ParamType::kReal, default_of(ex.proximity_safety), "", "a column may cover at most this fraction of the gap to another wall or front ahead of it (<= 0.5: facing fronts meet halfway)", kExtrudeCmd},
+      {"max-height-to-edge", ParamType::kReal, default_of(ex.max_height_to_edge_ratio), "", "cap on a column's total height relative to the shortest wall edge at its vertex, so small faces grow no needles; 0: no cap", kExtrudeCmd},
+      {"min-visibility", ParamType::kReal, default_of(ex.min_visibility), "", "smallest accepted min over incident faces of n.f (0.05 = 87 deg between the step and a face normal); below it a column stops", kExtrudeCmd},
+      {"max-step-stretch", ParamType::kReal, default_of(ex.max_step_stretch), "", "cap on the step stretch 1/V that keeps a layer's height above every incident face plane", kExtrudeCmd},
+      {"min-layer-fraction", ParamType::kReal, default_of(ex.min_layer_fraction), "", "a layer cut below this fraction of its height stops its column instead (no sliver layers)", kExtrudeCmd},
+      {"direction-repair-passes", ParamType::kInt, default_of(ex.direction_repair_passes), "", "passes that turn the columns of failing cells towards a common direction before their heights are cut", kExtrudeCmd},
+      {"collision-check", ParamType::kBool, default_of(ex.check_collisions), "", "exact intersection check of every new front against itself, the previous front and the wall (--collision-check=false: faster, no guarantee)", kExtrudeCmd},
       {"envelope", ParamType::kPath, "", "", "also write the outer envelope of the layers as .vtp", kExtrudeCmd},
       {"report", ParamType::kPath, "", "", "also write the run report as JSON", kExtrudeCmd},
       {"fill", ParamType::kBool, "false", "", "fill the domain outside the layers (inside for --side inward) with tetrahedra (TetGen) for a hybrid mesh", kExtrudeCmd},
