@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <vtkDataArray.h>
 #include <vtkNew.h>
+#include <vtkCellData.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataReader.h>
@@ -206,6 +207,35 @@ TEST(CliExtrude, EveryInputProblemFailsCleanlyWithoutOutput) {
     EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
     EXPECT_EQ(dir.entries(), 1) << name << ": output left behind";
   }
+}
+
+}  // namespace
+}  // namespace blayer
+
+namespace blayer {
+namespace {
+
+TEST(CliExtrude, HybridBoundaryFileMarksWallAndFarfield) {
+  TempDir dir;
+  const std::string cube = std::string(BLAYER_CASES_DIR) + "/003_cube/surface.stl";
+  const auto r = run_blayer("extrude " + cube + " -o " + dir.file("m.vtu") + " --layers 2 --first-height 0.02" +
+                                " --fill --farfield-scale 3 --boundary " + dir.file("b.vtp"),
+                            dir.file(""));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(dir.file("b.vtp").c_str());
+  reader->Update();
+  vtkDataArray* marker = reader->GetOutput()->GetCellData()->GetArray("marker");
+  ASSERT_NE(marker, nullptr);
+  int wall = 0, farfield = 0;
+  for (vtkIdType i = 0; i < marker->GetNumberOfTuples(); ++i) {
+    const int m = static_cast<int>(marker->GetTuple1(i));
+    wall += m == 1;
+    farfield += m == 2;
+  }
+  EXPECT_EQ(wall, 972);  // the cube's wall triangles
+  EXPECT_GE(farfield, 12);  // at least two triangles per box face
+  EXPECT_EQ(wall + farfield, marker->GetNumberOfTuples());
 }
 
 }  // namespace
