@@ -67,6 +67,14 @@ struct Arc {
   Vec3 u, v, g;
 };
 
+// Per-arc result of the cheap pass of Solver::evaluate, reused by its exact pass.
+struct ArcTest {
+  enum Kind : char { kPole, kInterior, kEnds };
+  double nf;  // n.f
+  double mm;  // |n - (n.f) f|
+  Kind kind;
+};
+
 struct Maximizer {
   Vec3 n;
   double d;
@@ -103,38 +111,79 @@ class Solver {
   std::vector<Maximizer> maxima_;    // D >= best_c_ - tie among V >= V_min
   std::vector<Maximizer> maxima_u_;  // D >= best_u_ - tie, any V
   int n_candidates_ = 0;
+  // Scratch of evaluate(): per-arc tests, the cached pre-test bounds of the last
+  // threshold, and the arc that rejected the last candidate.
+  mutable std::vector<ArcTest> arc_tests_;
+  mutable double thr_key_ = std::numeric_limits<double>::quiet_NaN();
+  mutable double cos_thr_ = 2.0;
+  mutable double sin_thr_ = -1.0;
+  mutable int last_reject_ = 0;
 };
 
 bool Solver::evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) const {
   const int k = g_.n_faces();
-  const double cos_thr = thr > 0.0 ? std::cos(thr) + kCheapTestMargin : 2.0;
-  const double sin_thr = thr > 0.0 ? std::sin(std::min(thr, 0.5 * M_PI)) - kCheapTestMargin : -1.0;
+  if (thr != thr_key_) {
+    // The pre-test bounds change only with the running best, far less often than
+    // candidates arrive: recomputing them per call cost two libm calls per candidate.
+    thr_key_ = thr;
+    cos_thr_ = thr > 0.0 ? std::cos(thr) + kCheapTestMargin : 2.0;
+    sin_thr_ = thr > 0.0 ? std::sin(std::min(thr, 0.5 * M_PI)) - kCheapTestMargin : -1.0;
+  }
+  // Pass 1: the feature class of every arc and the cheap sine/cosine rejections, with no
+  // arctangent. Starting at the arc that rejected the previous candidate finds a
+  // rejecting arc at once for most of them (consecutive candidates are near each other).
+  // The outcome does not depend on the order: a candidate is rejected iff some arc is
+  // closer than thr, and otherwise pass 2 computes D exactly, in arc order.
+  for (int c = 0; c < k; ++c) {
+    int i = last_reject_ + c;
+    if (i >= k) i -= k;
+    const Vec3& f = g_.face_normals[i];
+    const Vec3& u = g_.arc_start(i);
+    const Vec3& v = g_.arc_end(i);
+    ArcTest& at = arc_tests_[i];
+    at.nf = dot(n, f);
+    const Vec3 m = n - at.nf * f;
+    at.mm = norm(m);
+    if (at.mm == 0.0) {
+      at.kind = ArcTest::kPole;
+    } else if (dot(cross(u, m), f) >= 0.0 && dot(cross(m, v), f) >= 0.0) {
+      // Foot inside the arc: d = atan2(|n.f|, |m|) <= pi/2, increasing in |n.f|.
+      at.kind = ArcTest::kInterior;
+      if (thr > 0.5 * M_PI || std::fabs(at.nf) < sin_thr_) {
+        last_reject_ = i;
+        return false;
+      }
+    } else {
+      // Nearest point an end: d = min angle to u, v, decreasing in the cosines.
+      at.kind = ArcTest::kEnds;
+      if (std::max(dot(n, u), dot(n, v)) > cos_thr_) {
+        last_reject_ = i;
+        return false;
+      }
+    }
+  }
+  // Pass 2: exact distances for the survivors of pass 1, the same arithmetic in the same
+  // order as a single exact pass.
   double best = std::numeric_limits<double>::infinity();
   int feature_arc = -1;
   int feature_kind = 0;  // 0: arc interior or pole, 1: arc start, 2: arc end
   for (int i = 0; i < k; ++i) {
-    const Vec3& f = g_.face_normals[i];
-    const Vec3& u = g_.arc_start(i);
-    const Vec3& v = g_.arc_end(i);
-    const double nf = dot(n, f);
-    const Vec3 m = n - nf * f;
-    const double mm = norm(m);
+    const ArcTest& at = arc_tests_[i];
     double d;
     int kind = 0;
-    if (mm == 0.0) {
+    if (at.kind == ArcTest::kPole) {
       d = 0.5 * M_PI;
-    } else if (dot(cross(u, m), f) >= 0.0 && dot(cross(m, v), f) >= 0.0) {
-      // Cheap rejection in sine space before the arctangent (d <= pi/2 here).
-      if (thr > 0.5 * M_PI || std::fabs(nf) < sin_thr) return false;
-      d = std::atan2(std::fabs(nf), mm);
+    } else if (at.kind == ArcTest::kInterior) {
+      d = std::atan2(std::fabs(at.nf), at.mm);
     } else {
-      // Cheap rejection in cosine space before the arctangents.
-      if (std::max(dot(n, u), dot(n, v)) > cos_thr) return false;
-      const double du = angle_between(n, u), dv = angle_between(n, v);
+      const double du = angle_between(n, g_.arc_start(i)), dv = angle_between(n, g_.arc_end(i));
       d = du <= dv ? du : dv;
       kind = du <= dv ? 1 : 2;
     }
-    if (d < thr) return false;
+    if (d < thr) {
+      last_reject_ = i;
+      return false;
+    }
     if (d < best) {
       best = d;
       feature_arc = i;
@@ -402,6 +451,7 @@ MostNormalResult Solver::run(bool constrain_visibility) {
   }
   constrained_ = constrain_visibility;
   v_min_ = 0.5 * mv.visibility;
+  arc_tests_.resize(k);
   const bool all_reflex = build_sites();
   consider(mv.normal);
   if (!pts_.empty() && shortcuts_) {
