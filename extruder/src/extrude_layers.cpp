@@ -1,6 +1,7 @@
 #include "blayer/extruder/extrude_layers.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 
 #include "blayer/core/errors.h"
 #include "blayer/core/vertex_fans.h"
+#include "blayer/extruder/filtered_orient3d.h"
 #include "blayer/extruder/layer_cells.h"
 #include "blayer/extruder/triangle_bvh.h"
 #include "blayer/extruder/triangle_intersections.h"
@@ -128,6 +130,18 @@ void smooth_downward(const Csr& nbr, const std::vector<char>& mask, int rings, s
     g = *f;
     rg = *reason;
   }
+}
+
+// Same verdict as cell_validity(type, corners) == Validity::kValid (every validity tet
+// strictly positive), with the inlined filtered predicate.
+bool cell_is_valid(CellType type, const Vec3* corners) {
+  std::size_t n = 0;
+  const std::array<int, 4>* tets = validity_tets(type, &n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::array<int, 4>& t = tets[i];
+    if (detail::orient3d_filtered(corners[t[0]], corners[t[1]], corners[t[2]], corners[t[3]]) <= 0) return false;
+  }
+  return true;
 }
 
 // Step directions on a front: point normals, optionally smoothed without losing
@@ -381,9 +395,34 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   std::vector<StopReason> phi_reason(nv);
   std::vector<char> grows(nv), bad(nv);
   std::vector<Vec3> next(nv);
+  std::vector<Vec3> prev_next(nv);
+  std::vector<char> prev_grows(nv), moved(nv);
+  std::vector<char> bad_tri(nf), bad_cell(nf), collided(nf), tri_moved(nf), tri_grows(nf), query(nf);
+
+  // Exact-check state. Wall triangles and their tree are fixed; the current front's are
+  // built once per layer, the new front's once per attempt.
   std::vector<Vec3> soup_points;
-  std::vector<IndexedTriangle> soup;
-  std::vector<char> soup_check;
+  std::vector<IndexedTriangle> wall_tris(nf), cur_tris(nf), new_tris(nf);
+  std::vector<Box> cur_boxes(nf), new_boxes(nf);
+  std::vector<char> cur_is_wall(nf);
+  TriangleBvh wall_bvh, cur_bvh, new_bvh;
+  tbb::enumerable_thread_specific<std::vector<int>> partner_hits;
+  auto tri_box = [&](const IndexedTriangle& t) {
+    return Box::of_triangle(soup_points[t[0]], soup_points[t[1]], soup_points[t[2]]);
+  };
+  auto cur_id = [&](int v) -> std::int64_t { return layers[v] == 0 ? v : nv + v; };
+  auto new_id = [&](int v) -> std::int64_t { return grows[v] ? 2 * nv + v : cur_id(v); };
+  if (params.check_collisions) {
+    soup_points.resize(3 * static_cast<std::size_t>(nv));
+    std::copy(wall.points.begin(), wall.points.end(), soup_points.begin());
+    std::vector<Box> wall_boxes(nf);
+    tbb::parallel_for(0, nf, [&](int f) {
+      const Triangle& t = wall.triangles[f];
+      wall_tris[f] = {t[0], t[1], t[2]};
+      wall_boxes[f] = tri_box(wall_tris[f]);
+    });
+    wall_bvh.build(wall_boxes);
+  }
 
   for (int k = 0; k < n_layers; ++k) {
     for (int v = 0; v < nv; ++v) active[v] = !stopped[v];
@@ -424,22 +463,48 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     rep.t_proximity += seconds_since(t0);
 
     // ---- exact checks with local height reduction ----
+    // A cell or new front triangle is re-tested in a later attempt only if one of its
+    // columns moved or changed growing state, or if it failed in the previous attempt:
+    // the others are bit-identical to what already passed, so every attempt ends with
+    // exactly the verdicts of a full re-check, at a fraction of its cost.
     t0 = Clock::now();
     for (int v = 0; v < nv; ++v) grows[v] = !stopped[v];
-    std::vector<char> bad_tri(nf);
+    if (params.check_collisions) {
+      std::copy(top.begin(), top.end(), soup_points.begin() + nv);
+      if (k > 0) {
+        tbb::parallel_for(0, nf, [&](int f) {
+          const Triangle& t = wall.triangles[f];
+          cur_tris[f] = {cur_id(t[0]), cur_id(t[1]), cur_id(t[2])};
+          cur_is_wall[f] = layers[t[0]] == 0 && layers[t[1]] == 0 && layers[t[2]] == 0;
+          cur_boxes[f] = tri_box(cur_tris[f]);
+        });
+        cur_bvh.build(cur_boxes);
+      }
+    }
+    std::fill(bad_cell.begin(), bad_cell.end(), 0);
+    std::fill(collided.begin(), collided.end(), 0);
     for (int attempt = 0;; ++attempt) {
       parallel_vertices(nv, [&](int v) {
         next[v] = grows[v] ? top[v] + (phi[v] * step[v]) * dirs.n[v] : top[v];
+        moved[v] = attempt == 0 || grows[v] != prev_grows[v] || !(next[v] == prev_next[v]);
+      });
+      prev_next = next;
+      prev_grows = grows;
+      tbb::parallel_for(0, nf, [&](int f) {
+        const Triangle& t = wall.triangles[f];
+        tri_moved[f] = moved[t[0]] || moved[t[1]] || moved[t[2]];
+        tri_grows[f] = grows[t[0]] || grows[t[1]] || grows[t[2]];
       });
       std::vector<StopReason> bad_reason(nv, StopReason::kNone);
       std::fill(bad.begin(), bad.end(), 0);
 
       // Cells of this layer: exact corner-tet test.
-      std::vector<char> bad_cell(nf, 0);
       tbb::parallel_for(0, nf, [&](int f) {
+        if (!tri_moved[f]) return;
         const Triangle& t = wall.triangles[f];
         const std::array<bool, 3> g = {bool(grows[t[0]]), bool(grows[t[1]]), bool(grows[t[2]])};
         LayerCell cell;
+        bad_cell[f] = 0;
         // Local ids: 0..2 the bottoms, 3..5 the tops of the triangle's columns.
         if (!layer_cell({0, 1, 2}, {3, 4, 5}, g, &cell)) return;
         Vec3 c[6];
@@ -447,9 +512,8 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
           const int id = static_cast<int>(cell.nodes[i]);
           c[i] = id < 3 ? top[t[id]] : next[t[id - 3]];
         }
-        if (cell_validity(cell.type, c) != Validity::kValid) bad_cell[f] = 1;
+        bad_cell[f] = !cell_is_valid(cell.type, c);
       });
-      bad_tri = bad_cell;
       for (int f = 0; f < nf; ++f)
         if (bad_cell[f])
           for (int v : wall.triangles[f])
@@ -458,42 +522,59 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
               bad_reason[v] = StopReason::kQuality;
             }
 
-      // New front against itself, the current front and the wall. Local point ids:
-      // wall v -> v, current top v -> nv + v (v itself while still on the wall),
-      // new top v -> 2 nv + v (the current id where the column does not grow).
+      // New front against itself, the current front and the wall, on one point array
+      // so that shared vertices are seen as such: wall v -> v, current top v -> nv + v
+      // (v itself while still on the wall), new top v -> 2 nv + v (the current id where
+      // the column does not grow). A new triangle none of whose columns grows is the
+      // current (or wall) triangle itself, already checked, so it is neither tested nor
+      // a partner; likewise a current triangle that is still the wall triangle.
       if (params.check_collisions) {
-        soup_points.resize(3 * static_cast<std::size_t>(nv));
-        std::copy(wall.points.begin(), wall.points.end(), soup_points.begin());
-        std::copy(top.begin(), top.end(), soup_points.begin() + nv);
-        std::copy(next.begin(), next.end(), soup_points.begin() + 2 * nv);
-        auto cur_id = [&](int v) -> std::int64_t { return layers[v] == 0 ? v : nv + v; };
-        auto new_id = [&](int v) -> std::int64_t { return grows[v] ? 2 * nv + v : cur_id(v); };
-        soup.clear();
-        soup_check.clear();
-        for (const Triangle& t : wall.triangles) {
-          soup.push_back({t[0], t[1], t[2]});
-          soup_check.push_back(0);
-        }
-        if (k > 0)
-          for (const Triangle& t : wall.triangles) {
-            soup.push_back({cur_id(t[0]), cur_id(t[1]), cur_id(t[2])});
-            soup_check.push_back(0);
+        std::copy(next.begin(), next.end(), soup_points.begin() + 2 * static_cast<std::size_t>(nv));
+        tbb::parallel_for(0, nf, [&](int f) {
+          const Triangle& t = wall.triangles[f];
+          new_tris[f] = {new_id(t[0]), new_id(t[1]), new_id(t[2])};
+          new_boxes[f] = tri_box(new_tris[f]);
+          query[f] = tri_grows[f] && (tri_moved[f] || collided[f]);
+          if (query[f] || !tri_grows[f]) collided[f] = 0;
+        });
+        new_bvh.build(new_boxes);
+        for (auto& l : partner_hits) l.clear();
+        tbb::parallel_for(tbb::blocked_range<int>(0, nf), [&](const tbb::blocked_range<int>& r) {
+          std::vector<int>& partners = partner_hits.local();
+          for (int f = r.begin(); f != r.end(); ++f) {
+            if (!query[f]) continue;
+            const IndexedTriangle& s = new_tris[f];
+            const Box& b = new_boxes[f];
+            bool hit = false;
+            wall_bvh.for_each_overlap(b, [&](int j) {
+              if (!hit && soup_triangles_intersect(soup_points, s, wall_tris[j])) hit = true;
+            });
+            if (k > 0)
+              cur_bvh.for_each_overlap(b, [&](int j) {
+                if (!hit && !cur_is_wall[j] && soup_triangles_intersect(soup_points, s, cur_tris[j])) hit = true;
+              });
+            // A pair of new triangles is tested once: from the smaller id if both are
+            // tested in this attempt, else from the one that is.
+            new_bvh.for_each_overlap(b, [&](int j) {
+              if (j == f || !tri_grows[j] || (query[j] && j < f)) return;
+              if (soup_triangles_intersect(soup_points, s, new_tris[j])) {
+                hit = true;
+                partners.push_back(j);
+              }
+            });
+            if (hit) collided[f] = 1;
           }
-        const std::size_t first_new = soup.size();
-        for (const Triangle& t : wall.triangles) {
-          soup.push_back({new_id(t[0]), new_id(t[1]), new_id(t[2])});
-          soup_check.push_back(grows[t[0]] || grows[t[1]] || grows[t[2]]);
-        }
-        const auto pairs = find_triangle_intersections(soup_points, soup, &soup_check);
-        for (const auto& pr : pairs)
-          for (int i : {pr.first, pr.second})
-            if (static_cast<std::size_t>(i) >= first_new) {
-              bad_tri[i - first_new] = 1;
-              for (int v : wall.triangles[i - first_new])
-                if (grows[v]) {
-                  bad[v] = 1;
-                  if (bad_reason[v] == StopReason::kNone) bad_reason[v] = StopReason::kCollision;
-                }
+        });
+        for (const auto& l : partner_hits)
+          for (int j : l) collided[j] = 1;
+      }
+      for (int f = 0; f < nf; ++f) {
+        bad_tri[f] = bad_cell[f] || collided[f];
+        if (collided[f])
+          for (int v : wall.triangles[f])
+            if (grows[v]) {
+              bad[v] = 1;
+              if (bad_reason[v] == StopReason::kNone) bad_reason[v] = StopReason::kCollision;
             }
       }
 

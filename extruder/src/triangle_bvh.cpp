@@ -24,6 +24,7 @@ void TriangleBvh::build(const std::vector<Box>& boxes) {
   const int n = static_cast<int>(boxes.size());
   nodes_.clear();
   items_.resize(n);
+  item_box_.clear();
   if (n == 0) return;
   for (int i = 0; i < n; ++i) items_[i] = i;
   nodes_.resize(node_count(n));
@@ -81,6 +82,8 @@ void TriangleBvh::build(const std::vector<Box>& boxes) {
     }
   };
   Builder{boxes, centre, nodes_, items_}(0, 0, n);
+  item_box_.resize(n);
+  for (int i = 0; i < n; ++i) item_box_[i] = boxes[items_[i]];
 }
 
 }  // namespace blayer

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "blayer/extruder/triangle_bvh.h"
-#include "blayer/quality/orient3d.h"
+#include "blayer/extruder/filtered_orient3d.h"
 
 namespace blayer {
 
@@ -18,7 +18,7 @@ using Vec2 = std::array<double, 2>;
 // z = 0 and taking the apex (0,0,1) makes det[b-a, c-a, d-a] equal to the 2D
 // determinant, with no rounding in the lifted coordinates.
 int orient2d(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return orient3d_sign({a[0], a[1], 0.0}, {b[0], b[1], 0.0}, {c[0], c[1], 0.0}, {0.0, 0.0, 1.0});
+  return detail::orient3d_filtered({a[0], a[1], 0.0}, {b[0], b[1], 0.0}, {c[0], c[1], 0.0}, {0.0, 0.0, 1.0});
 }
 
 // c lies on the closed segment ab, given that a, b, c are collinear.
@@ -70,7 +70,21 @@ bool coplanar_same_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
   return orient2d(A, B, C) * orient2d(A, B, D) > 0;
 }
 
+// All three signs equal and non-zero: the triangle lies strictly on one side of the plane.
+bool strictly_one_side(int a, int b, int c) { return a != 0 && a == b && a == c; }
+
 bool triangles_intersect(const Vec3* s, const Vec3* t) {
+  // A triangle strictly on one side of the other's plane cannot meet it. This settles
+  // almost every pair of nearby front triangles with 3 or 6 orientations instead of up
+  // to 30 in the edge tests below, which decide the remaining pairs.
+  if (strictly_one_side(detail::orient3d_filtered(t[0], t[1], t[2], s[0]),
+                        detail::orient3d_filtered(t[0], t[1], t[2], s[1]),
+                        detail::orient3d_filtered(t[0], t[1], t[2], s[2])))
+    return false;
+  if (strictly_one_side(detail::orient3d_filtered(s[0], s[1], s[2], t[0]),
+                        detail::orient3d_filtered(s[0], s[1], s[2], t[1]),
+                        detail::orient3d_filtered(s[0], s[1], s[2], t[2])))
+    return false;
   for (int k = 0; k < 3; ++k) {
     if (segment_intersects_triangle(s[k], s[(k + 1) % 3], t[0], t[1], t[2])) return true;
     if (segment_intersects_triangle(t[k], t[(k + 1) % 3], s[0], s[1], s[2])) return true;
@@ -81,12 +95,13 @@ bool triangles_intersect(const Vec3* s, const Vec3* t) {
 }  // namespace
 
 bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const int sp = orient3d_sign(a, b, c, p), sq = orient3d_sign(a, b, c, q);
+  const int sp = detail::orient3d_filtered(a, b, c, p), sq = detail::orient3d_filtered(a, b, c, q);
   if (sp == 0 && sq == 0) return coplanar_segment_triangle(p, q, a, b, c);
   if (sp * sq > 0) return false;
   // The line pq crosses the plane within the segment; it meets the closed triangle iff
   // it passes on the same side of (or touches) all three edges.
-  const int o1 = orient3d_sign(p, q, a, b), o2 = orient3d_sign(p, q, b, c), o3 = orient3d_sign(p, q, c, a);
+  const int o1 = detail::orient3d_filtered(p, q, a, b), o2 = detail::orient3d_filtered(p, q, b, c),
+            o3 = detail::orient3d_filtered(p, q, c, a);
   return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
 }
 
@@ -106,7 +121,7 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
     const Vec3& b = pts[s[shared_s[1]]];
     const Vec3& c = pts[s[os]];
     const Vec3& d = pts[t[ot]];
-    if (orient3d_sign(a, b, c, d) != 0) return false;
+    if (detail::orient3d_filtered(a, b, c, d) != 0) return false;
     // Coplanar: a fold iff c and d lie on the same side of the line ab in that plane.
     return coplanar_same_side(a, b, c, d);
   }
@@ -137,14 +152,13 @@ std::vector<std::pair<int, int>> find_triangle_intersections(const std::vector<V
   bvh.build(boxes);
   std::vector<std::vector<int>> hits(n);
   tbb::parallel_for(0, n, [&](int i) {
-    const bool ci = !check || (*check)[i];
+    // Each unordered pair is tested once, from one of its flagged triangles: the smaller
+    // index if both are flagged, else the flagged one. So an unflagged triangle owns no
+    // pair and need not search at all.
+    if (check && !(*check)[i]) return;
     bvh.for_each_overlap(boxes[i], [&](int j) {
-      // Each unordered pair once: from its smaller index, unless only the larger one is
-      // flagged, in which case from the flagged one.
       const bool cj = !check || (*check)[j];
-      if (j == i || !(ci || cj)) return;
-      const bool owner = (ci && cj) ? i < j : ci;
-      if (!owner) return;
+      if (j == i || (cj && j < i)) return;
       if (soup_triangles_intersect(points, triangles[i], triangles[j])) hits[i].push_back(j);
     });
     std::sort(hits[i].begin(), hits[i].end());

@@ -6,7 +6,10 @@
 // of the centroid bounds, leaves of <= kLeafSize boxes, built in O(n log n) with the top
 // levels in parallel; the layout depends only on the input, so queries and everything
 // derived from them are deterministic. Rebuilding it per layer is cheap next to the
-// normal solve (see bench/extruder).
+// normal solve (see bench/extruder). Each leaf item's own box is stored next to it and
+// tested before the item is visited: a leaf's box is the union of up to kLeafSize
+// boxes, so without this most visited items would not overlap the query at all and
+// would each cost an exact pair test.
 #pragma once
 
 #include <algorithm>
@@ -56,7 +59,8 @@ class TriangleBvh {
       const Node& n = nodes_[stack[--top]];
       if (!n.box.overlaps(q)) continue;
       if (n.count > 0) {
-        for (int i = n.first; i < n.first + n.count; ++i) visit(items_[i]);
+        for (int i = n.first; i < n.first + n.count; ++i)
+          if (item_box_[i].overlaps(q)) visit(items_[i]);
       } else {
         stack[top++] = n.first;
         stack[top++] = n.first + n.left_nodes;
@@ -79,7 +83,8 @@ class TriangleBvh {
       const Node& n = nodes_[stack[--top]];
       if (!segment_hits_box(origin, inv, t_max, n.box)) continue;
       if (n.count > 0) {
-        for (int i = n.first; i < n.first + n.count; ++i) visit(items_[i], &t_max);
+        for (int i = n.first; i < n.first + n.count; ++i)
+          if (segment_hits_box(origin, inv, t_max, item_box_[i])) visit(items_[i], &t_max);
       } else {
         stack[top++] = n.first;
         stack[top++] = n.first + n.left_nodes;
@@ -110,6 +115,7 @@ class TriangleBvh {
 
   std::vector<Node> nodes_;
   std::vector<int> items_;
+  std::vector<Box> item_box_;  // item_box_[i] = boxes[items_[i]]
 };
 
 }  // namespace blayer

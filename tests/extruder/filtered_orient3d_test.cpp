@@ -1,0 +1,86 @@
+#include "blayer/extruder/filtered_orient3d.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "blayer/extruder/triangle_intersections.h"
+#include "blayer/quality/orient3d.h"
+
+namespace blayer {
+namespace {
+
+struct Rng {
+  std::uint64_t state = 987654321;
+  double operator()() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  }
+};
+
+// The filter must give orient3d_sign's answer everywhere, in particular where it cannot
+// decide: exactly coplanar points, points one ulp off a plane, and scales where the
+// error bound would be invalid (underflow, overflow).
+TEST(FilteredOrient3d, AgreesWithTheExactPredicate) {
+  Rng rnd;
+  int n_zero = 0, n_pos = 0, n_neg = 0;
+  for (double scale : {1.0, 1e-3, 1e6, 1e-160, 1e-300, 1e160, 1e300}) {
+    for (int i = 0; i < 20000; ++i) {
+      Vec3 p[4];
+      for (Vec3& x : p) x = Vec3{rnd() - 0.5, rnd() - 0.5, rnd() - 0.5} * scale;
+      const int kind = i % 4;
+      if (kind >= 1) {
+        // d on the plane of a, b, c: an affine combination with dyadic weights is often
+        // exactly coplanar; nudging one coordinate by an ulp makes it nearly so.
+        const double u = std::ldexp(std::floor(rnd() * 8), -3), w = std::ldexp(std::floor(rnd() * 8), -3);
+        p[3] = p[0] + u * (p[1] - p[0]) + w * (p[2] - p[0]);
+        if (kind == 2) p[3][2] = std::nextafter(p[3][2], HUGE_VAL);
+        if (kind == 3) p[3][0] = std::nextafter(p[3][0], -HUGE_VAL);
+      }
+      const int exact = orient3d_sign(p[0], p[1], p[2], p[3]);
+      ASSERT_EQ(detail::orient3d_filtered(p[0], p[1], p[2], p[3]), exact) << "scale " << scale << " i " << i;
+      n_zero += exact == 0;
+      n_pos += exact > 0;
+      n_neg += exact < 0;
+    }
+  }
+  EXPECT_GT(n_zero, 100);
+  EXPECT_GT(n_pos, 1000);
+  EXPECT_GT(n_neg, 1000);
+}
+
+TEST(FilteredOrient3d, KeepsTheSignConvention) {
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  EXPECT_EQ(detail::orient3d_filtered(a, b, c, Vec3{0, 0, 1}), 1);
+  EXPECT_EQ(detail::orient3d_filtered(a, b, c, Vec3{0, 0, -1}), -1);
+  EXPECT_EQ(detail::orient3d_filtered(a, b, c, Vec3{0.3, 0.3, 0}), 0);
+}
+
+// The plane-separation shortcut of the disjoint-triangle test must not change a verdict:
+// compare with the plain definition (an edge of one meets the other) on random close
+// triangles, many of which touch or nearly touch.
+TEST(FilteredOrient3d, TriangleTestMatchesEdgeDefinition) {
+  Rng rnd;
+  std::vector<Vec3> pts(6);
+  const IndexedTriangle s{0, 1, 2}, t{3, 4, 5};
+  int n_hit = 0;
+  for (int i = 0; i < 50000; ++i) {
+    for (Vec3& x : pts) x = Vec3{std::floor(rnd() * 5), std::floor(rnd() * 5), std::floor(rnd() * 5)};
+    bool reference = false;
+    for (int k = 0; k < 3; ++k) {
+      reference = reference || segment_intersects_triangle(pts[k], pts[(k + 1) % 3], pts[3], pts[4], pts[5]) ||
+                  segment_intersects_triangle(pts[3 + k], pts[3 + (k + 1) % 3], pts[0], pts[1], pts[2]);
+    }
+    // Degenerate triangles are outside the contract (small integers: the cross is exact).
+    if (norm2(cross(pts[1] - pts[0], pts[2] - pts[0])) == 0 || norm2(cross(pts[4] - pts[3], pts[5] - pts[3])) == 0)
+      continue;
+    ASSERT_EQ(soup_triangles_intersect(pts, s, t), reference) << i;
+    n_hit += reference;
+  }
+  EXPECT_GT(n_hit, 1000);
+}
+
+}  // namespace
+}  // namespace blayer
