@@ -71,7 +71,7 @@ struct Arc {
 struct ArcTest {
   enum Kind : char { kPole, kInterior, kEnds };
   double nf;  // n.f
-  double mm;  // |n - (n.f) f|
+  double mm2;  // |n - (n.f) f|^2
   Kind kind;
 };
 
@@ -143,8 +143,9 @@ bool Solver::evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) con
     ArcTest& at = arc_tests_[i];
     at.nf = dot(n, f);
     const Vec3 m = n - at.nf * f;
-    at.mm = norm(m);
-    if (at.mm == 0.0) {
+    // |m| only in pass 2: its square root waits until an arctangent needs it.
+    at.mm2 = norm2(m);
+    if (at.mm2 == 0.0) {
       at.kind = ArcTest::kPole;
     } else if (dot(cross(u, m), f) >= 0.0 && dot(cross(m, v), f) >= 0.0) {
       // Foot inside the arc: d = atan2(|n.f|, |m|) <= pi/2, increasing in |n.f|.
@@ -174,7 +175,7 @@ bool Solver::evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) con
     if (at.kind == ArcTest::kPole) {
       d = 0.5 * M_PI;
     } else if (at.kind == ArcTest::kInterior) {
-      d = std::atan2(std::fabs(at.nf), at.mm);
+      d = std::atan2(std::fabs(at.nf), std::sqrt(at.mm2));
     } else {
       const double du = angle_between(n, g_.arc_start(i)), dv = angle_between(n, g_.arc_end(i));
       d = du <= dv ? du : dv;
