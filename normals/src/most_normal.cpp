@@ -28,6 +28,18 @@ constexpr double kConstraintSlack = 1e-12;
 // only when the exact arctangent comparison would as well): a few ulps of values <= 1.
 constexpr double kCheapTestMargin = 1e-15;
 
+// Level above the rejection bound at which the great-circle screen
+// (Solver::circle_rejected) requires a link vertex, and the rounding allowance of its
+// computed boundary points: the candidates it discards lie within ~1e-15 of the circle,
+// so each is still beyond the bound by ~1e-12, and a boundary point it computes is
+// within 1e-15 of the exact one, well inside 1e-14.
+constexpr double kCircleLevel = 1e-12;
+constexpr double kCircleRounding = 1e-14;
+
+// Smallest |x| of a candidate x = h x (w x f) discarded with its circle: its direction,
+// after normalisation, is within 1e-16 / 1e-3 = 1e-13 of the circle, inside kCircleLevel.
+constexpr double kCircleCandidateNorm = 1e-3;
+
 // Slowest fall-off rate (radians of D per radian of motion) of the link-vertex bound
 // around its maximiser for which the bound shortcut is taken beyond convex corners:
 // directions within normality_tie of the optimum then lie within 1e-9 / 1e-2 = 1e-7 rad
@@ -91,6 +103,7 @@ class Solver {
   // Distance to the link with early exit below thr; sets *fluid from the nearest feature.
   bool evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) const;
   void consider(Vec3 n);
+  bool circle_rejected(const Vec3& h) const;
   bool build_sites();
   void enumerate_unconstrained();
   void enumerate_constrained();
@@ -213,6 +226,53 @@ bool Solver::evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) con
   return true;
 }
 
+// Whether every candidate on the great circle {n.h = 0} (h unit) would be rejected by
+// consider() at the current threshold thr, so that a whole family of candidates on that
+// bisector need not be built. Proof: u_j is a link point, so D(n) <= angle(n, u_j), and
+// n.u_j > cos(thr) + kCheapTestMargin makes the computed D(n) < thr (the arc ending at
+// u_j is at most angle(n, u_j) away; the margin covers rounding; see evaluate()). The
+// threshold only rises during the enumeration, so a candidate rejected now is rejected
+// when its turn comes. The sets G_j = {n on the circle : n.u_j > lambda}, lambda =
+// cos(thr) + kCheapTestMargin + kCircleLevel, are open arcs; if they do not cover the
+// circle, some component of the uncovered part has a boundary point p on the boundary of
+// one G_j with p.u_i <= lambda for all i, which is found below (its computed image is
+// within rounding of p, so the test at lambda + kCircleRounding sees it uncovered). When
+// no such point is found, every n on the circle has n.u_j > lambda for some j, and every
+// candidate within 1e-13 of the circle has n.u_j > cos(thr) + kCheapTestMargin.
+bool Solver::circle_rejected(const Vec3& h) const {
+  const double thr = best_c_ - tol_.normality_tie;
+  if (!(thr > 0.0)) return false;
+  const double lambda = std::cos(thr) + kCheapTestMargin + kCircleLevel;
+  Vec3 e1, e2;
+  detail::orthonormal_complement(h, &e1, &e2);
+  const int k = static_cast<int>(g_.dirs.size());
+  constexpr int kMaxVertices = 64;
+  if (k > kMaxVertices) return false;
+  double a[kMaxVertices], b[kMaxVertices];
+  for (int j = 0; j < k; ++j) {
+    a[j] = dot(g_.dirs[j], e1);
+    b[j] = dot(g_.dirs[j], e2);
+  }
+  bool any_arc = false;
+  for (int j = 0; j < k; ++j) {
+    const double r2 = a[j] * a[j] + b[j] * b[j];
+    // G_j empty (r <= lambda) or the whole circle (r < -lambda, lambda < 0).
+    if (lambda >= 0.0 && r2 <= lambda * lambda) continue;
+    if (lambda < 0.0 && r2 < lambda * lambda) return true;
+    any_arc = true;
+    // Boundary points: (x, y) with a x + b y = lambda on the unit circle.
+    const double q = std::sqrt(std::max(0.0, r2 - lambda * lambda));
+    for (double sign : {1.0, -1.0}) {
+      const double x = (lambda * a[j] - sign * q * b[j]) / r2;
+      const double y = (lambda * b[j] + sign * q * a[j]) / r2;
+      bool covered = false;
+      for (int i = 0; i < k && !covered; ++i) covered = a[i] * x + b[i] * y > lambda + kCircleRounding;
+      if (!covered) return false;
+    }
+  }
+  return any_arc;
+}
+
 void Solver::add_maximizer(const Vec3& n, double d, double v) {
   if (d > best_c_) {
     best_c_ = d;
@@ -312,14 +372,19 @@ void Solver::enumerate_unconstrained() {
         consider(-h);
       }
   auto emit = [this](const Vec3& n) { consider(n); };
-  // Point-point bisector (great circle) against point-arc bisector (cone).
+  // Point-point bisector (great circle) against point-arc bisector (cone). Both families
+  // below lie on one bisector circle per pair; a circle the link vertices screen off
+  // entirely (circle_rejected) is skipped, except candidates x too short to have a
+  // reliable direction, which are evaluated as before.
   for (int a = 0; a < np; ++a)
     for (int b = a + 1; b < np; ++b) {
       const Vec3 h = normalized(pts_[a] - pts_[b]);
       if (norm2(h) == 0.0) continue;
+      const bool rejected = shortcuts_ && circle_rejected(h);
       for (const Arc& arc : arcs_) {
-        detail::circle_cone(h, 0.0, pts_[a], arc.g, emit);
         const Vec3 x = cross(h, cross(pts_[a], arc.g));
+        if (rejected && norm(x) >= kCircleCandidateNorm) continue;
+        if (!rejected) detail::circle_cone(h, 0.0, pts_[a], arc.g, emit);
         consider(x);
         consider(-x);
       }
@@ -329,9 +394,11 @@ void Solver::enumerate_unconstrained() {
     for (int b = a + 1; b < na; ++b) {
       const Vec3 h = normalized(arcs_[a].g - arcs_[b].g);
       if (norm2(h) == 0.0) continue;
+      const bool rejected = shortcuts_ && circle_rejected(h);
       for (const Vec3& w : pts_) {
-        detail::circle_cone(h, 0.0, w, arcs_[a].g, emit);
         const Vec3 x = cross(h, cross(w, arcs_[a].g));
+        if (rejected && norm(x) >= kCircleCandidateNorm) continue;
+        if (!rejected) detail::circle_cone(h, 0.0, w, arcs_[a].g, emit);
         consider(x);
         consider(-x);
       }
