@@ -1,4 +1,4 @@
-// normals_bench [--methods m1,m2,...] [--dump DIR] [--stats] [surface.off[.gz] ...]
+// normals_bench [--methods m1,m2,...] [--dump DIR] [--stats] [surface ...]  (any input format, .gz too)
 // For each surface (default: a generated sphere) and each normal method prints
 // vertices/s on one thread and on all threads, then the status counts, min V and min D
 // of the method. Surfaces whose triangles face inward (negative signed volume) are
@@ -10,7 +10,6 @@
 //              candidates evaluated), to see where the solver spends its time
 #include <tbb/global_control.h>
 #include <tbb/info.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <chrono>
@@ -24,6 +23,7 @@
 
 #include "blayer/core/surface.h"
 #include "blayer/core/vertex_fans.h"
+#include "blayer/io/prepare_surface.h"
 #include "blayer/normals/fan_geometry.h"
 #include "blayer/normals/most_normal.h"
 #include "blayer/normals/point_normals.h"
@@ -37,38 +37,6 @@ struct Options {
   std::string dump_dir;
   bool stats = false;
 };
-
-std::string read_gz(const std::string& path) {
-  gzFile f = gzopen(path.c_str(), "rb");
-  if (!f) throw std::runtime_error("cannot open " + path);
-  std::string out;
-  char buf[1 << 16];
-  int n;
-  while ((n = gzread(f, buf, sizeof buf)) > 0) out.append(buf, n);
-  gzclose(f);
-  return out;
-}
-
-TriSurface read_off(const std::string& path) {
-  std::istringstream in(read_gz(path));
-  std::string magic;
-  in >> magic;
-  if (magic != "OFF") throw std::runtime_error(path + ": not an OFF file");
-  long nv, nf, ne;
-  in >> nv >> nf >> ne;
-  TriSurface s;
-  s.points.resize(nv);
-  for (auto& p : s.points) in >> p[0] >> p[1] >> p[2];
-  for (long i = 0; i < nf; ++i) {
-    int c;
-    in >> c;
-    std::vector<int> v(c);
-    for (int& x : v) in >> x;
-    for (int j = 1; j + 1 < c; ++j) s.triangles.push_back({v[0], v[j], v[j + 1]});
-  }
-  if (!in) throw std::runtime_error(path + ": truncated OFF file");
-  return s;
-}
 
 TriSurface sphere(int n_lat, int n_lon) {
   TriSurface s;
@@ -222,7 +190,7 @@ int main(int argc, char** argv) {
       }
     }
     if (files.empty()) run("generated sphere 200x400", sphere(200, 400), opt);
-    for (const std::string& f : files) run(f, read_off(f), opt);
+    for (const std::string& f : files) run(f, blayer::load_surface(f, {}).surface, opt);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
