@@ -1,6 +1,9 @@
 // Usage: extruder_bench surface.off[.gz] [layers=10] [first_height_over_diagonal=2e-4] [ratio=1.2]
+//                       [--cap-length shortest|mean|face] [--cap-ratio x]
 // Extrudes the layers on an outward-oriented closed surface (fluid outside) and prints
-// the run report, the envelope intersection check and the peak resident set size.
+// the run report, the envelope intersection check and the peak resident set size. The
+// options set ExtrusionParams::height_cap_length and max_height_to_edge_ratio, to
+// compare thickness policies.
 #include <sys/resource.h>
 #include <zlib.h>
 
@@ -9,6 +12,7 @@
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "blayer/core/surface.h"
 #include "blayer/extruder/extrude_layers.h"
@@ -57,17 +61,38 @@ blayer::TriSurface read_off(const char* path) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: %s surface.off[.gz] [layers] [first_height/diagonal] [ratio]\n", argv[0]);
+  auto usage = [&] {
+    std::fprintf(stderr,
+                 "usage: %s surface.off[.gz] [layers] [first_height/diagonal] [ratio] "
+                 "[--cap-length shortest|mean|face] [--cap-ratio x]\n",
+                 argv[0]);
     return 2;
-  }
-  const blayer::TriSurface wall = read_off(argv[1]);
-  const double diag = blayer::bounding_box_diagonal(wall.points);
+  };
   blayer::ExtrusionParams p;
-  p.growth.layers = argc > 2 ? std::atoi(argv[2]) : 10;
-  p.growth.first_height = (argc > 3 ? std::atof(argv[3]) : 2e-4) * diag;
-  p.growth.growth_ratio = argc > 4 ? std::atof(argv[4]) : 1.2;
-  std::printf("surface %s: %zu points, %zu triangles, bbox diagonal %.6g, signed volume %.6g\n", argv[1],
+  std::vector<const char*> pos;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--cap-length" && i + 1 < argc) {
+      const std::string v = argv[++i];
+      if (v == "shortest") p.height_cap_length = blayer::HeightCapLength::kShortestEdge;
+      else if (v == "mean") p.height_cap_length = blayer::HeightCapLength::kMeanEdge;
+      else if (v == "face") p.height_cap_length = blayer::HeightCapLength::kFaceSize;
+      else return usage();
+    } else if (a == "--cap-ratio" && i + 1 < argc) {
+      p.max_height_to_edge_ratio = std::atof(argv[++i]);
+    } else if (a.rfind("--", 0) == 0) {
+      return usage();
+    } else {
+      pos.push_back(argv[i]);
+    }
+  }
+  if (pos.empty()) return usage();
+  const blayer::TriSurface wall = read_off(pos[0]);
+  const double diag = blayer::bounding_box_diagonal(wall.points);
+  p.growth.layers = pos.size() > 1 ? std::atoi(pos[1]) : 10;
+  p.growth.first_height = (pos.size() > 2 ? std::atof(pos[2]) : 2e-4) * diag;
+  p.growth.growth_ratio = pos.size() > 3 ? std::atof(pos[3]) : 1.2;
+  std::printf("surface %s: %zu points, %zu triangles, bbox diagonal %.6g, signed volume %.6g\n", pos[0],
               wall.points.size(), wall.triangles.size(), diag, blayer::signed_volume(wall));
 
   const blayer::ExtrusionResult r = blayer::extrude_layers(wall, p, [](int k, int n) {

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 #include "blayer/core/errors.h"
 #include "blayer/core/vertex_fans.h"
@@ -232,47 +233,44 @@ double ray_triangle(const Vec3& o, const Vec3& dir, const Vec3& a, const Vec3& b
   return (t >= 0.0 && t <= t_max) ? t : HUGE_VAL;
 }
 
-// Triangles of up to two surfaces sharing the wall's connectivity (the wall and the
-// current front), for the proximity rays. Item id i < F is wall triangle i, F + i is
-// front triangle i.
-struct ProximitySet {
-  const TriSurface* wall = nullptr;
-  const std::vector<Vec3>* front_points = nullptr;  // null: wall only
-  std::vector<Vec3> unit_normal;
-  TriangleBvh bvh;
+// Unit normals of the triangles of a surface with the wall's connectivity.
+void unit_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& P, std::vector<Vec3>* out) {
+  out->resize(tris.size());
+  tbb::parallel_for(0, static_cast<int>(tris.size()), [&](int i) {
+    const Triangle& t = tris[i];
+    (*out)[i] = normalized(cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]));
+  });
+}
 
-  void build(const TriSurface& w, const std::vector<Vec3>* fp) {
-    wall = &w;
-    front_points = fp;
-    const int nf = static_cast<int>(w.triangles.size());
-    const int n = fp ? 2 * nf : nf;
-    std::vector<Box> boxes(n);
-    unit_normal.resize(n);
-    tbb::parallel_for(0, n, [&](int i) {
-      const Triangle& t = w.triangles[i % nf];
-      const std::vector<Vec3>& P = i < nf ? w.points : *fp;
-      boxes[i] = Box::of_triangle(P[t[0]], P[t[1]], P[t[2]]);
-      unit_normal[i] = normalized(cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]));
-    });
-    bvh.build(boxes);
-  }
+// The wall and optionally the current front (the wall's triangles on the column tops),
+// each with a tree over its triangles' boxes, for the proximity rays.
+struct ProximitySet {
+  const std::vector<Triangle>* tris = nullptr;
+  const std::vector<Vec3>* wall_points = nullptr;
+  const TriangleBvh* wall_bvh = nullptr;
+  const std::vector<Vec3>* wall_normal = nullptr;
+  const std::vector<Vec3>* front_points = nullptr;  // null: wall only
+  const TriangleBvh* front_bvh = nullptr;
+  const std::vector<Vec3>* front_normal = nullptr;
 
   // Distance to the first front-facing triangle not incident to column v along dir,
   // within t_max; +inf if none.
   double first_hit(int v, const Vec3& o, const Vec3& dir, double t_max) const {
-    const int nf = static_cast<int>(wall->triangles.size());
     double best = HUGE_VAL;
-    bvh.for_each_on_segment(o, dir, t_max, [&](int i, double* tm) {
-      const Triangle& t = wall->triangles[i % nf];
-      if (t[0] == v || t[1] == v || t[2] == v) return;
-      if (!(dot(dir, unit_normal[i]) < 0.0)) return;
-      const std::vector<Vec3>& P = i < nf ? wall->points : *front_points;
-      const double d = ray_triangle(o, dir, P[t[0]], P[t[1]], P[t[2]], *tm);
-      if (d < best) {
-        best = d;
-        *tm = d;
-      }
-    });
+    auto search = [&](const TriangleBvh& bvh, const std::vector<Vec3>& P, const std::vector<Vec3>& normal) {
+      bvh.for_each_on_segment(o, dir, std::min(t_max, best), [&](int i, double* tm) {
+        const Triangle& t = (*tris)[i];
+        if (t[0] == v || t[1] == v || t[2] == v) return;
+        if (!(dot(dir, normal[i]) < 0.0)) return;
+        const double d = ray_triangle(o, dir, P[t[0]], P[t[1]], P[t[2]], *tm);
+        if (d < best) {
+          best = d;
+          *tm = d;
+        }
+      });
+    };
+    search(*wall_bvh, *wall_points, *wall_normal);
+    if (front_points) search(*front_bvh, *front_points, *front_normal);
     return best;
   }
 };
@@ -328,8 +326,18 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   std::vector<char> capped(nv, 0), gap_limited(nv, 0);
   if (params.max_height_to_edge_ratio > 0.0) {
     parallel_vertices(nv, [&](int v) {
+      double length = short_edge[v];
+      if (params.height_cap_length == HeightCapLength::kMeanEdge) {
+        length = edge[v];
+      } else if (params.height_cap_length == HeightCapLength::kFaceSize) {
+        double area = 0.0;
+        for (const int* f = vtri.begin(v); f != vtri.end(v); ++f)
+          area += 0.5 * norm(triangle_area_vector(wall, wall.triangles[*f]));
+        const int n = static_cast<int>(vtri.end(v) - vtri.begin(v));
+        length = n > 0 ? std::sqrt(2.0 * area / n) : 0.0;
+      }
       const double target = base[v] * rep.growth.total_thickness;
-      const double cap = params.max_height_to_edge_ratio * short_edge[v];
+      const double cap = params.max_height_to_edge_ratio * length;
       if (used[v] && target > cap) {
         scale[v] = cap / target;
         capped[v] = 1;
@@ -343,9 +351,24 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
 
   // Wall-gap cap: the whole column (about total / V long) may span at most
   // proximity_safety of the distance to the wall part it faces.
+  // One tree layout, the wall's, serves every surface of the run (TriangleBvh::refit).
+  TriangleBvh wall_bvh;
+  std::vector<Vec3> wall_normal;
+  {
+    std::vector<Box> wall_boxes(nf);
+    tbb::parallel_for(0, nf, [&](int f) {
+      const Triangle& t = wall.triangles[f];
+      wall_boxes[f] = Box::of_triangle(wall.points[t[0]], wall.points[t[1]], wall.points[t[2]]);
+    });
+    wall_bvh.build(wall_boxes);
+    unit_normals(wall.triangles, wall.points, &wall_normal);
+  }
   {
     ProximitySet ps;
-    ps.build(wall, nullptr);
+    ps.tris = &wall.triangles;
+    ps.wall_points = &wall.points;
+    ps.wall_bvh = &wall_bvh;
+    ps.wall_normal = &wall_normal;
     parallel_vertices(nv, [&](int v) {
       if (!dirs.ok[v]) return;
       const double extent = base[v] * scale[v] * rep.growth.total_thickness /
@@ -401,11 +424,13 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
 
   // Exact-check state. Wall triangles and their tree are fixed; the current front's are
   // built once per layer, the new front's once per attempt.
+  // The current front's tree serves the proximity rays too.
   std::vector<Vec3> soup_points;
   std::vector<IndexedTriangle> wall_tris(nf), cur_tris(nf), new_tris(nf);
   std::vector<Box> cur_boxes(nf), new_boxes(nf);
+  std::vector<Vec3> cur_normal;
   std::vector<char> cur_is_wall(nf);
-  TriangleBvh wall_bvh, cur_bvh, new_bvh;
+  TriangleBvh cur_bvh = wall_bvh, new_bvh = wall_bvh;
   tbb::enumerable_thread_specific<std::vector<int>> partner_hits;
   auto tri_box = [&](const IndexedTriangle& t) {
     return Box::of_triangle(soup_points[t[0]], soup_points[t[1]], soup_points[t[2]]);
@@ -415,13 +440,10 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   if (params.check_collisions) {
     soup_points.resize(3 * static_cast<std::size_t>(nv));
     std::copy(wall.points.begin(), wall.points.end(), soup_points.begin());
-    std::vector<Box> wall_boxes(nf);
     tbb::parallel_for(0, nf, [&](int f) {
       const Triangle& t = wall.triangles[f];
       wall_tris[f] = {t[0], t[1], t[2]};
-      wall_boxes[f] = tri_box(wall_tris[f]);
     });
-    wall_bvh.build(wall_boxes);
   }
 
   for (int k = 0; k < n_layers; ++k) {
@@ -448,9 +470,25 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
 
     // ---- proximity: gap ahead along the step ----
     t0 = Clock::now();
+    if (k > 0) {
+      tbb::parallel_for(0, nf, [&](int f) {
+        const Triangle& t = wall.triangles[f];
+        cur_boxes[f] = Box::of_triangle(top[t[0]], top[t[1]], top[t[2]]);
+      });
+      cur_bvh.refit(cur_boxes);
+      unit_normals(wall.triangles, top, &cur_normal);
+    }
     {
       ProximitySet ps;
-      ps.build(wall, k > 0 ? &top : nullptr);
+      ps.tris = &wall.triangles;
+      ps.wall_points = &wall.points;
+      ps.wall_bvh = &wall_bvh;
+      ps.wall_normal = &wall_normal;
+      if (k > 0) {
+        ps.front_points = &top;
+        ps.front_bvh = &cur_bvh;
+        ps.front_normal = &cur_normal;
+      }
       parallel_vertices(nv, [&](int v) {
         if (!active[v]) return;
         const double d = ps.first_hit(v, top[v], dirs.n[v], step[v] / params.proximity_safety);
@@ -476,9 +514,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
           const Triangle& t = wall.triangles[f];
           cur_tris[f] = {cur_id(t[0]), cur_id(t[1]), cur_id(t[2])};
           cur_is_wall[f] = layers[t[0]] == 0 && layers[t[1]] == 0 && layers[t[2]] == 0;
-          cur_boxes[f] = tri_box(cur_tris[f]);
         });
-        cur_bvh.build(cur_boxes);
       }
     }
     std::fill(bad_cell.begin(), bad_cell.end(), 0);
@@ -537,7 +573,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
           query[f] = tri_grows[f] && (tri_moved[f] || collided[f]);
           if (query[f] || !tri_grows[f]) collided[f] = 0;
         });
-        new_bvh.build(new_boxes);
+        new_bvh.refit(new_boxes);
         for (auto& l : partner_hits) l.clear();
         tbb::parallel_for(tbb::blocked_range<int>(0, nf), [&](const tbb::blocked_range<int>& r) {
           std::vector<int>& partners = partner_hits.local();
@@ -662,6 +698,22 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     rep.t_assembly += seconds_since(t0);
     if (progress) progress(k + 1, n_layers);
   }
+
+  // The marching state is no longer needed; freeing it here keeps it out of the peak
+  // memory, which is reached while the output arrays are filled.
+  auto release = [](auto& x) { x = std::decay_t<decltype(x)>(); };
+  release(soup_points);
+  release(wall_tris);
+  release(cur_tris);
+  release(new_tris);
+  release(cur_boxes);
+  release(new_boxes);
+  release(cur_normal);
+  release(wall_bvh);
+  release(cur_bvh);
+  release(new_bvh);
+  release(prev_next);
+  release(next);
 
   // ---- output arrays, envelope ----
   t0 = Clock::now();

@@ -1,5 +1,6 @@
 #include "blayer/extruder/triangle_bvh.h"
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 namespace blayer {
@@ -84,6 +85,29 @@ void TriangleBvh::build(const std::vector<Box>& boxes) {
   Builder{boxes, centre, nodes_, items_}(0, 0, n);
   item_box_.resize(n);
   for (int i = 0; i < n; ++i) item_box_[i] = boxes[items_[i]];
+}
+
+void TriangleBvh::refit(const std::vector<Box>& boxes) {
+  const int n = static_cast<int>(items_.size());
+  tbb::parallel_for(0, n, [&](int i) { item_box_[i] = boxes[items_[i]]; });
+  auto unite = [](Box* a, const Box& b) {
+    for (int k = 0; k < 3; ++k) {
+      a->lo[k] = std::min(a->lo[k], b.lo[k]);
+      a->hi[k] = std::max(a->hi[k], b.hi[k]);
+    }
+  };
+  // Nodes are in preorder (children after their parent), so a reverse sweep sees both
+  // children of a node before the node itself.
+  for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i) {
+    Node& nd = nodes_[i];
+    if (nd.count > 0) {
+      nd.box = item_box_[nd.first];
+      for (int j = nd.first + 1; j < nd.first + nd.count; ++j) unite(&nd.box, item_box_[j]);
+    } else {
+      nd.box = nodes_[nd.first].box;
+      unite(&nd.box, nodes_[nd.first + nd.left_nodes].box);
+    }
+  }
 }
 
 }  // namespace blayer

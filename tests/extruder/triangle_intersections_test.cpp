@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "blayer/extruder/triangle_bvh.h"
+
 #include "test_surfaces.h"
 
 namespace blayer {
@@ -91,6 +95,46 @@ TEST(TriangleIntersections, TreeSearchMatchesBruteForceOnRandomTriangles) {
       if (soup_triangles_intersect(pts, tris[i], tris[j])) brute.emplace_back(i, j);
   ASSERT_GT(brute.size(), 10u);
   EXPECT_EQ(find_triangle_intersections(pts, tris), brute);
+}
+
+}  // namespace
+}  // namespace blayer
+
+namespace blayer {
+namespace {
+
+// A refitted tree must answer overlap queries for the new boxes exactly like brute
+// force, even when the boxes moved far from the ones its layout was built on.
+TEST(TriangleBvh, RefitAnswersForTheNewBoxes) {
+  std::uint64_t state = 777;
+  auto rnd = [&]() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  auto random_boxes = [&](double spread) {
+    std::vector<Box> b(300);
+    for (Box& x : b) {
+      const Vec3 c{rnd() * spread, rnd() * spread, rnd() * spread};
+      x.lo = c;
+      x.hi = c + Vec3{rnd(), rnd(), rnd()};
+    }
+    return b;
+  };
+  TriangleBvh bvh;
+  bvh.build(random_boxes(4.0));
+  const std::vector<Box> moved = random_boxes(6.0);
+  bvh.refit(moved);
+  int n_pairs = 0;
+  for (int i = 0; i < static_cast<int>(moved.size()); ++i) {
+    std::vector<int> found, brute;
+    bvh.for_each_overlap(moved[i], [&](int j) { found.push_back(j); });
+    for (int j = 0; j < static_cast<int>(moved.size()); ++j)
+      if (moved[i].overlaps(moved[j])) brute.push_back(j);
+    std::sort(found.begin(), found.end());
+    EXPECT_EQ(found, brute) << i;
+    n_pairs += static_cast<int>(brute.size());
+  }
+  EXPECT_GT(n_pairs, static_cast<int>(moved.size()));  // more than the self-overlaps
 }
 
 }  // namespace

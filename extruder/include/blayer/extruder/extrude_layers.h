@@ -83,6 +83,15 @@ enum class StopReason : int {
 constexpr int kStopReasonCount = 5;
 const char* stop_reason_name(StopReason r);
 
+// The wall length a column's total height is capped against (max_height_to_edge_ratio).
+enum class HeightCapLength : int {
+  kShortestEdge = 0,  // shortest wall edge at the vertex
+  kMeanEdge = 1,      // mean wall edge length at the vertex
+  kFaceSize = 2,      // sqrt(2 x mean area of the incident wall triangles): the leg of a
+                      // right isosceles triangle of that area, a size of the prism caps
+                      // that, unlike the shortest edge, is not set by one short side
+};
+
 // Parameters; each default is what the CLI shows in --help.
 struct ExtrusionParams {
   // Layer count and heights (growth_law.h). The default law only fixes N = 10 and the
@@ -103,6 +112,8 @@ struct ExtrusionParams {
   // requested thickness, 5 gives 99 % coverage at ~50 %, 10 drops coverage to 89 %);
   // 0 disables the cap.
   double max_height_to_edge_ratio = 4.0;
+  // Which wall length max_height_to_edge_ratio multiplies.
+  HeightCapLength height_cap_length = HeightCapLength::kShortestEdge;
   // Smallest accepted visibility min_i n.f_i (cosine of the largest angle between the
   // step direction and an incident face normal); 0.05 is about 87 degrees.
   double min_visibility = 0.05;

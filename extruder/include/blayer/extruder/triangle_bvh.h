@@ -46,6 +46,13 @@ class TriangleBvh {
   // Builds over boxes[0..n); item ids passed to visitors are indices into boxes.
   void build(const std::vector<Box>& boxes);
 
+  // Replaces the boxes, keeping the tree's layout (boxes.size() must equal the count the
+  // tree was built with): O(n), no sorting. Queries stay exact for any boxes, since every
+  // node box is recomputed as the union of its items'; only pruning efficiency depends on
+  // the layout. The extruder's fronts share the wall's triangles and stay close to them
+  // relative to the surface's extent, so the wall's layout serves every front.
+  void refit(const std::vector<Box>& boxes);
+
   bool empty() const { return nodes_.empty(); }
 
   // visit(id) for every item whose box overlaps q.
