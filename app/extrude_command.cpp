@@ -55,6 +55,10 @@ ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, s
   e.min_layer_fraction = p.get_real("min-layer-fraction");
   e.check_collisions = p.get_bool("collision-check");
   e.direction_repair_passes = p.get_int("direction-repair-passes");
+  const std::string cap = p.get_string("height-cap-length");
+  e.height_cap_length = cap == "mean"   ? HeightCapLength::kMeanEdge
+                        : cap == "face" ? HeightCapLength::kFaceSize
+                                        : HeightCapLength::kShortestEdge;
   if (e.normal_smoothing_iterations < 0 || e.height_smoothing_rings < 0 || e.direction_repair_passes < 0)
     throw InputError("--normal-smoothing, --height-smoothing-rings and --direction-repair-passes must be >= 0");
   if (!(e.proximity_safety > 0.0 && e.proximity_safety <= 1.0))

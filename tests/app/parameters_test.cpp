@@ -28,3 +28,19 @@ TEST(Parameters, ReadmeListsTheTableAsGenerated) {
 
 }  // namespace
 }  // namespace blayer
+
+#include "blayer/extruder/extrude_layers.h"
+
+namespace blayer {
+namespace {
+
+TEST(Parameters, HeightCapLengthDefaultIsTheEngines) {
+  for (const ParamSpec& p : parameter_table())
+    if (p.name == "height-cap-length") {
+      EXPECT_EQ(p.default_value, "shortest");
+      EXPECT_EQ(ExtrusionParams{}.height_cap_length, HeightCapLength::kShortestEdge);
+    }
+}
+
+}  // namespace
+}  // namespace blayer
