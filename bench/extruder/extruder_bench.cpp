@@ -1,11 +1,11 @@
-// Usage: extruder_bench surface.off[.gz] [layers=10] [first_height_over_diagonal=2e-4] [ratio=1.2]
+// Usage: extruder_bench SURFACE [layers=10] [first_height_over_diagonal=2e-4] [ratio=1.2]
 //                       [--cap-length shortest|mean|face] [--cap-ratio x]
-// Extrudes the layers on an outward-oriented closed surface (fluid outside) and prints
+// Extrudes the layers on a closed surface, read and oriented for external flow by
+// blayer_io as the command line does (any input format, .gz too), and prints
 // the run report, the envelope intersection check and the peak resident set size. The
 // options set ExtrusionParams::height_cap_length and max_height_to_edge_ratio, to
 // compare thickness policies.
 #include <sys/resource.h>
-#include <zlib.h>
 
 #include <chrono>
 #include <cstdio>
@@ -16,49 +16,7 @@
 
 #include "blayer/core/surface.h"
 #include "blayer/extruder/extrude_layers.h"
-
-namespace {
-
-std::string read_gz(const char* path) {
-  gzFile f = gzopen(path, "rb");
-  if (!f) {
-    std::fprintf(stderr, "cannot open %s\n", path);
-    std::exit(1);
-  }
-  std::string out;
-  char buf[1 << 16];
-  int n;
-  while ((n = gzread(f, buf, sizeof buf)) > 0) out.append(buf, n);
-  gzclose(f);
-  return out;
-}
-
-blayer::TriSurface read_off(const char* path) {
-  std::istringstream in(read_gz(path));
-  std::string tag;
-  in >> tag;
-  if (tag != "OFF") {
-    std::fprintf(stderr, "%s: not an OFF file\n", path);
-    std::exit(1);
-  }
-  long nv, nf, ne;
-  in >> nv >> nf >> ne;
-  blayer::TriSurface s;
-  s.points.resize(nv);
-  for (auto& p : s.points) in >> p[0] >> p[1] >> p[2];
-  s.triangles.resize(nf);
-  for (auto& t : s.triangles) {
-    int k;
-    in >> k >> t[0] >> t[1] >> t[2];
-    if (k != 3) {
-      std::fprintf(stderr, "%s: only triangles are supported\n", path);
-      std::exit(1);
-    }
-  }
-  return s;
-}
-
-}  // namespace
+#include "blayer/io/prepare_surface.h"
 
 int main(int argc, char** argv) {
   auto usage = [&] {
@@ -87,7 +45,7 @@ int main(int argc, char** argv) {
     }
   }
   if (pos.empty()) return usage();
-  const blayer::TriSurface wall = read_off(pos[0]);
+  const blayer::TriSurface wall = blayer::load_surface(pos[0], {}).surface;
   const double diag = blayer::bounding_box_diagonal(wall.points);
   p.growth.layers = pos.size() > 1 ? std::atoi(pos[1]) : 10;
   p.growth.first_height = (pos.size() > 2 ? std::atof(pos[2]) : 2e-4) * diag;
