@@ -52,5 +52,5 @@ echo "ratio blayer/gmsh wall time: $(echo "$(cat "$work/blayer.secs") / $(cat "$
 echo "--- blayer check of Gmsh's mesh:"
 "$blayer" check "$work/gmsh.vtk" | grep -E "^(cells:|inverted:|min_corner)" || true
 echo "--- blayer check of blayer's mesh:"
-"$blayer" check "$work/blayer.vtu" | grep -E "^(cells:|inverted:|min_corner)" || true
+"$blayer" check "$work/blayer.vtu" | grep -E "^(cells:|inverted:|min_corner|  time:)" || true
 grep -E "^(coverage|columns|time)" "$work/blayer.log" || true
