@@ -15,6 +15,7 @@
 #include "blayer/core/vertex_fans.h"
 #include "blayer/extruder/filtered_orient3d.h"
 #include "blayer/extruder/layer_cells.h"
+#include "blayer/quality/cell_metrics.h"
 #include "blayer/extruder/triangle_bvh.h"
 #include "blayer/extruder/triangle_intersections.h"
 #include "blayer/quality/cell_validity.h"
@@ -738,7 +739,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     const std::int64_t o = mesh.offsets[c];
     const int n = corner_count(mesh.cell_types[c]);
     for (int i = 0; i < n; ++i) corners[i] = mesh.points[mesh.connectivity[o + i]];
-    c_jac.values[c] = min_corner_scaled_jacobian(mesh.cell_types[c], corners);
+    c_jac.values[c] = compute_cell_metrics(mesh.cell_types[c], corners).scaled_jacobian;
   });
   mesh.cell_data = {std::move(c_layer), std::move(c_jac)};
 

@@ -1,4 +1,5 @@
 #include "blayer/extruder/layer_cells.h"
+#include "blayer/quality/cell_metrics.h"
 
 #include <gtest/gtest.h>
 
@@ -138,28 +139,20 @@ TEST(LayerCells, InvertedFlatAndTwistedPrismsAreRejected) {
   EXPECT_TRUE(prism_is_valid(wedge(sheared).data()));
 }
 
-TEST(LayerCells, ScaledJacobianOfReferenceCells) {
-  // Equilateral right prism: the cap corners have 60 degree angles.
+TEST(LayerCells, CellsInLayerOrderHaveTheQualityModulesPositiveScaledJacobian) {
+  // The metric is the quality module's; this pins that the layer cells' node order is
+  // the one it expects: an equilateral right prism is ideal (1), a mirrored one negative.
   const double s = std::sqrt(3.0) / 2.0;
   const Vec3 eq[6] = {{0, 0, 0}, {1, 0, 0}, {0.5, s, 0}, {0, 0, 1}, {1, 0, 1}, {0.5, s, 1}};
   const LayerCell c = make({true, true, true});
-  const std::vector<Vec3> p = corners_of(c, eq);
-  EXPECT_NEAR(min_corner_scaled_jacobian(CellType::kWedge, p.data()), s, 1e-14);
-  // Orthogonal tet corner at the origin; the other corners are 45/45/90-ish.
-  const Vec3 tet[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  const double jt = min_corner_scaled_jacobian(CellType::kTet, tet);
-  EXPECT_GT(jt, 0.0);
-  EXPECT_LT(jt, 1.0);
-  const Vec3 tet_inverted[4] = {{0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}};
-  EXPECT_LT(min_corner_scaled_jacobian(CellType::kTet, tet_inverted), 0.0);
-  // Unit pyramid base corners are orthogonal to the base edges but lean to the apex.
-  const Vec3 pyr[5] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 1}};
-  EXPECT_GT(min_corner_scaled_jacobian(CellType::kPyramid, pyr), 0.0);
-  const Vec3 pyr_down[5] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, -1}};
-  EXPECT_LT(min_corner_scaled_jacobian(CellType::kPyramid, pyr_down), 0.0);
-  // Every corner of the inverted wedge is negative.
+  EXPECT_NEAR(compute_cell_metrics(CellType::kWedge, corners_of(c, eq).data()).scaled_jacobian, 1.0, 1e-12);
   Vec3 down[6] = {kPts[0], kPts[1], kPts[2], {0, 0, -1}, {1, 0, -1}, {0.3, 0.9, -1}};
-  EXPECT_LT(min_corner_scaled_jacobian(CellType::kWedge, corners_of(c, down).data()), 0.0);
+  EXPECT_LT(compute_cell_metrics(CellType::kWedge, corners_of(c, down).data()).scaled_jacobian, 0.0);
+  for (const std::array<bool, 3> grows : {std::array<bool, 3>{true, true, false}, std::array<bool, 3>{true, false, false}}) {
+    const LayerCell partial = make(grows);
+    const std::vector<Vec3> p = corners_of(partial, eq);
+    EXPECT_GT(compute_cell_metrics(partial.type, p.data()).scaled_jacobian, 0.0);
+  }
 }
 
 }  // namespace

@@ -13,41 +13,12 @@
 #include "blayer/core/volume_mesh.h"
 #include "blayer/quality/cell_validity.h"
 #include "blayer/quality/orient3d.h"
+#include "analytic_surfaces.h"
 
 namespace blayer::test {
 
-// Icosahedron subdivided `level` times, projected to the sphere of radius r; faces
-// outward (fluid outside).
-inline TriSurface icosphere(int level, double r) {
-  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  TriSurface s;
-  s.points = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-              {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  s.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
-  for (int l = 0; l < level; ++l) {
-    std::map<std::pair<int, int>, int> mid;
-    auto midpoint = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      auto it = mid.find(key);
-      if (it != mid.end()) return it->second;
-      s.points.push_back(0.5 * (s.points[a] + s.points[b]));
-      return mid[key] = static_cast<int>(s.points.size()) - 1;
-    };
-    std::vector<Triangle> next;
-    for (const Triangle& f : s.triangles) {
-      const int ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
-      next.push_back({f[0], ab, ca});
-      next.push_back({f[1], bc, ab});
-      next.push_back({f[2], ca, bc});
-      next.push_back({ab, bc, ca});
-    }
-    s.triangles.swap(next);
-  }
-  for (Vec3& p : s.points) p = r * normalized(p);
-  return s;
-}
+using test_surfaces::flipped;
+using test_surfaces::icosphere;
 
 // Boundary of a union of unit voxels (i,j,k) in [0,n)^3 where filled(i,j,k), scaled by
 // `cell`; faces outward from the solid. The union must be a manifold solid (no voxels
@@ -89,11 +60,6 @@ inline TriSurface voxel_surface(std::array<int, 3> n, const std::function<bool(i
             s.triangles.push_back({q[0], q[2], q[3]});
           }
       }
-  return s;
-}
-
-inline TriSurface flipped(TriSurface s) {
-  for (Triangle& t : s.triangles) std::swap(t[1], t[2]);
   return s;
 }
 

@@ -9,16 +9,16 @@
 #include "blayer/core/errors.h"
 #include "blayer/quality/mesh_check.h"
 #include "mesh_checks.h"
-#include "test_surfaces.h"
+#include "analytic_surfaces.h"
 
 namespace blayer {
 namespace {
 
-using fill_test::box;
+using test_surfaces::box;
 using fill_test::check_fill;
-using fill_test::flipped;
-using fill_test::icosphere;
-using fill_test::merged;
+using test_surfaces::flipped;
+using test_surfaces::icosphere;
+using test_surfaces::merged;
 
 // Summing a few thousand tet volumes in long double loses far less than this relative
 // amount; a missing or extra tet changes the sum by much more.

@@ -29,12 +29,5 @@ struct LayerCell {
 bool layer_cell(const std::array<std::int64_t, 3>& bottom, const std::array<std::int64_t, 3>& top,
                 const std::array<bool, 3>& grows, LayerCell* out);
 
-// Minimum over corners of the scaled Jacobian det(e1,e2,e3)/(|e1||e2||e3|), where e1..e3
-// are the cell's edges leaving the corner in right-handed order: 1 for an orthogonal
-// corner, sin 60 deg for the base corners of an equilateral right prism, <= 0 when a
-// corner is flat or inverted. Wedge and tet: all corners; pyramid: the four base corners.
-// Floating point, for reporting only: validity is decided by quality/cell_validity.h.
-// A corner with a zero-length edge gives 0.
-double min_corner_scaled_jacobian(CellType type, const Vec3* corners);
 
 }  // namespace blayer

@@ -1,13 +1,17 @@
-// Small analytic closed surfaces for the fill tests, built in code.
+// Small analytic closed surfaces built in code, shared by the test suites: icosphere,
+// subdivided box, reversed orientation, union of two surfaces.
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
 #include <map>
 #include <utility>
 
 #include "blayer/core/surface.h"
 
-namespace blayer::fill_test {
+namespace blayer::test_surfaces {
 
 // Icosphere of the given radius and centre: the icosahedron with each triangle split
 // into four `levels` times, points projected onto the sphere. Normals point outward.
@@ -97,4 +101,4 @@ inline TriSurface merged(TriSurface a, const TriSurface& b) {
   return a;
 }
 
-}  // namespace blayer::fill_test
+}  // namespace blayer::test_surfaces
