@@ -29,7 +29,7 @@ std::vector<DataArray> quality_arrays(const MeshCheckReport& r, const std::vecto
   auto id = [&](std::size_t i) { return ids ? (*ids)[i] : i; };
   std::vector<DataArray> out;
   for (std::size_t k = 0; k < kCheckMetricNames.size(); ++k) {
-    DataArray a{kCheckMetricNames[k], 1, false, std::vector<double>(n)};
+    DataArray a{kCheckMetricNames[k], 1, false, std::vector<double>(n), true};
     for (std::size_t i = 0; i < n; ++i) a.values[i] = r.metrics[k][id(i)];
     out.push_back(std::move(a));
   }
@@ -78,7 +78,7 @@ VolumeMesh extract_bad_cells(const VolumeMesh& mesh, const MeshCheckReport& repo
   }
 
   auto subset = [](const DataArray& a, const std::vector<std::size_t>& ids) {
-    DataArray s{a.name, a.n_components, a.integer, {}};
+    DataArray s{a.name, a.n_components, a.integer, {}, a.single_precision};
     s.values.reserve(ids.size() * a.n_components);
     for (std::size_t i : ids)
       for (int k = 0; k < a.n_components; ++k) s.values.push_back(a.values[i * a.n_components + k]);

@@ -35,12 +35,15 @@ inline const char* cell_type_name(CellType t) {
 }
 
 // A named array of n_tuples x n_components values. Integer-valued arrays are written
-// as Int32 so ParaView shows them as categories.
+// as Int32 so ParaView shows them as categories; single_precision arrays (quality
+// metrics, meant for viewing and thresholding) as Float32, which halves their size on
+// disk; all others as Float64.
 struct DataArray {
   std::string name;
   int n_components = 1;
   bool integer = false;
   std::vector<double> values;
+  bool single_precision = false;
 };
 
 struct VolumeMesh {
