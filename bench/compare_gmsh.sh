@@ -36,19 +36,13 @@ print('Merge "%s.stl";' % name)
 print("Extrude { Surface{1}; Layers{ {%s}, {%s} }; Recombine; }" % (",".join(["1"] * n), ",".join(heights)))
 PY
 
-measure() {  # label, command...: prints wall seconds and peak RSS
-  local label="$1"; shift
-  /usr/bin/time -f "%e %M" -o "$work/time.txt" "$@" > "$work/$label.log" 2>&1 || true
-  read -r secs kb < "$work/time.txt"
-  printf "%-8s wall %8.2f s   peak RSS %8.1f MB\n" "$label" "$secs" "$(echo "$kb / 1024" | bc -l)"
-  echo "$secs" > "$work/$label.secs"
-}
+source "$root/bench/measure.sh"
 
 echo "surface $surface: N=$layers h1=$h1 r=$ratio"
 (cd "$work" && measure gmsh gmsh "$name.geo" -3 -format vtk -o "$work/gmsh.vtk")
 measure blayer "$blayer" extrude "$surface" -o "$work/blayer.vtu" --layers "$layers" --first-height "$h1" \
   --growth-ratio "$ratio"
-echo "ratio blayer/gmsh wall time: $(echo "$(cat "$work/blayer.secs") / $(cat "$work/gmsh.secs")" | bc -l | cut -c1-5)"
+echo "ratio blayer/gmsh wall time: $(ratio blayer gmsh)"
 echo "--- blayer check of Gmsh's mesh:"
 "$blayer" check "$work/gmsh.vtk" | grep -E "^(cells:|inverted:|min_corner)" || true
 echo "--- blayer check of blayer's mesh:"

@@ -56,19 +56,13 @@ print("Volume(6001) = {5001, 5002};")
 PY
 h1=$(cat "$work/h1.txt")
 
-measure() {  # label, command...: prints wall seconds and peak RSS
-  local label="$1"; shift
-  /usr/bin/time -f "%e %M" -o "$work/time.txt" "$@" > "$work/$label.log" 2>&1 || true
-  read -r secs kb < "$work/time.txt"
-  printf "%-8s wall %8.2f s   peak RSS %8.1f MB\n" "$label" "$secs" "$(echo "$kb / 1024" | bc -l)"
-  echo "$secs" > "$work/$label.secs"
-}
+source "$root/bench/measure.sh"
 
 echo "surface $surface: N=$layers h1=$h1 r=$ratio farfield scale $scale"
 (cd "$work" && measure gmsh gmsh "$name.geo" -3 -format vtk -o "$work/gmsh.vtk")
 measure blayer "$blayer" extrude "$surface" -o "$work/blayer.vtu" --layers "$layers" --first-height "$h1" \
   --growth-ratio "$ratio" --fill --farfield-scale "$scale"
-echo "ratio blayer/gmsh wall time: $(echo "$(cat "$work/blayer.secs") / $(cat "$work/gmsh.secs")" | bc -l | cut -c1-5)"
+echo "ratio blayer/gmsh wall time: $(ratio blayer gmsh)"
 for m in gmsh.vtk blayer.vtu; do
   echo "--- blayer check of ${m%%.*}'s mesh:"
   "$blayer" check "$work/$m" | grep -E "^(cells:|inverted:|min_corner|faces:)" || true
