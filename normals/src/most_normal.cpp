@@ -176,33 +176,55 @@ bool Solver::evaluate(const Vec3& n, double thr, double* d_out, bool* fluid) con
       }
     }
   }
-  // Pass 2: exact distances for the survivors of pass 1, the same arithmetic in the same
-  // order as a single exact pass.
-  double best = std::numeric_limits<double>::infinity();
+  // Pass 2: exact distances for the survivors of pass 1. Every arc's distance is an
+  // angle atan2(y, x) with y >= 0, so the nearest arc is found by comparing the pairs
+  // (sign of y1 x2 - x1 y2, exact to rounding for angles in [0, pi] except 0 against
+  // pi, where it vanishes) and only its angle needs an arctangent; ties keep the first
+  // arc, and an arc's start before its end.
+  auto nearer = [](double y1, double x1, double y2, double x2) {
+    const double c = y1 * x2 - x1 * y2;
+    return c < 0.0 || (c == 0.0 && y1 == 0.0 && y2 == 0.0 && x1 > x2);
+  };
+  double best_y = 0.0, best_x = 0.0;
   int feature_arc = -1;
   int feature_kind = 0;  // 0: arc interior or pole, 1: arc start, 2: arc end
   for (int i = 0; i < k; ++i) {
     const ArcTest& at = arc_tests_[i];
-    double d;
+    double y, x;
     int kind = 0;
     if (at.kind == ArcTest::kPole) {
-      d = 0.5 * M_PI;
+      y = 1.0;
+      x = 0.0;
     } else if (at.kind == ArcTest::kInterior) {
-      d = std::atan2(std::fabs(at.nf), std::sqrt(at.mm2));
+      y = std::fabs(at.nf);
+      x = std::sqrt(at.mm2);
     } else {
-      const double du = angle_between(n, g_.arc_start(i)), dv = angle_between(n, g_.arc_end(i));
-      d = du <= dv ? du : dv;
-      kind = du <= dv ? 1 : 2;
+      const Vec3& u = g_.arc_start(i);
+      const Vec3& v = g_.arc_end(i);
+      const double yu = norm(cross(n, u)), xu = dot(n, u);
+      const double yv = norm(cross(n, v)), xv = dot(n, v);
+      if (nearer(yv, xv, yu, xu)) {
+        y = yv;
+        x = xv;
+        kind = 2;
+      } else {
+        y = yu;
+        x = xu;
+        kind = 1;
+      }
     }
-    if (d < thr) {
-      last_reject_ = i;
-      return false;
-    }
-    if (d < best) {
-      best = d;
+    if (feature_arc < 0 || nearer(y, x, best_y, best_x)) {
+      best_y = y;
+      best_x = x;
       feature_arc = i;
       feature_kind = kind;
     }
+  }
+  // A pole's pair (1, 0) gives atan2 = pi/2 as rounded, the same as 0.5 * M_PI.
+  const double best = std::atan2(best_y, best_x);
+  if (best < thr) {
+    last_reject_ = feature_arc;
+    return false;
   }
   *d_out = best;
   if (feature_kind == 0) {
