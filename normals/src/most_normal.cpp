@@ -370,14 +370,22 @@ void Solver::enumerate_unconstrained() {
     for (int b = a + 1; b < np; ++b) consider(-(pts_[a] + pts_[b]));
   for (int a = 0; a < na; ++a)
     for (int b = a + 1; b < na; ++b) consider(arcs_[a].g + arcs_[b].g);
-  // Point-arc parabola extrema: where it crosses the plane of w and f.
+  // Point-arc parabola extrema: where it crosses the plane of w and f, at the angles
+  // tf/2 +- pi/4 (and their antipodes) from w, tf = angle(w, f). For unit w and f,
+  // p = w + f and q = f - w are orthogonal, at angles tf/2 and tf/2 + pi/2, so those
+  // directions are p/|p| +- q/|q|, scaled here by |p| |q| (consider() normalises):
+  // no angle round trip. Each of p, q is as well conditioned as the in-plane axis
+  // f - (w.f) w, and both vanish only when f = +-w.
   for (const Vec3& w : pts_)
     for (const Arc& arc : arcs_) {
-      const Vec3 e2 = normalized(arc.g - dot(w, arc.g) * w);
-      if (norm2(e2) == 0.0) continue;
-      const double tf = std::atan2(dot(arc.g, e2), dot(w, arc.g));
-      for (double t0 : {0.5 * (tf + 0.5 * M_PI), 0.5 * (tf - 0.5 * M_PI)})
-        for (double t : {t0, t0 + M_PI}) consider(std::cos(t) * w + std::sin(t) * e2);
+      const Vec3 p = w + arc.g, q = arc.g - w;
+      const double lp = norm(p), lq = norm(q);
+      if (lp == 0.0 || lq == 0.0) continue;
+      const Vec3 a = lq * p + lp * q, b = lq * p - lp * q;
+      consider(a);
+      consider(-a);
+      consider(b);
+      consider(-b);
     }
   for (int a = 0; a < np; ++a)
     for (int b = a + 1; b < np; ++b)
