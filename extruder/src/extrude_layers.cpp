@@ -276,15 +276,6 @@ struct ProximitySet {
   }
 };
 
-// The wall-gap cap also looks sideways: kGapConeRays rays at kGapConeAngle from the
-// column direction. On a 90-degree convex rim the column leaves along the bisector, so
-// only a tilt beyond 45 degrees reaches below the rim's plane, into the wall facing it
-// across a slot's mouth; 70 degrees also reaches it from columns turned towards the
-// slot's ends, and still passes 20 degrees clear of a flat wall around the column. 8
-// azimuths leave no side wall of a slot unseen.
-constexpr int kGapConeRays = 8;
-constexpr double kGapConeAngle = 70.0 * M_PI / 180.0;
-
 }  // namespace
 
 ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& params,
@@ -383,29 +374,9 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
       if (!dirs.ok[v]) return;
       const double extent = base[v] * scale[v] * rep.growth.total_thickness /
                             std::max(dirs.visibility[v], 1.0 / params.max_step_stretch);
-      double allowed = extent;
       const double d = ps.first_hit(v, wall.points[v], dirs.n[v], extent / params.proximity_safety);
-      if (d < HUGE_VAL) allowed = std::min(allowed, params.proximity_safety * d);
-      // Walls beside the column, not only ahead of it: the same cap against the first
-      // wall met by each of kGapConeRays rays tilted by kGapConeAngle. Along its own
-      // ray alone, the floor of a slot narrower than twice the thickness sees nothing
-      // for the slot's depth and grows to full height through the side walls' limited
-      // fronts, and the columns on the two rims of the slot's mouth (convex edges facing
-      // each other) lean towards each other and meet in the middle; a tilted ray sees
-      // the side wall or the opposite rim's wall, so those columns keep all their
-      // layers at a reduced height instead of stopping on collision.
-      const Vec3& n = dirs.n[v];
-      const Vec3 a = normalized(cross(n, std::fabs(n[0]) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0}));
-      const Vec3 b = cross(n, a);
-      const double sin_t = std::sin(kGapConeAngle), cos_t = std::cos(kGapConeAngle);
-      for (int i = 0; i < kGapConeRays; ++i) {
-        const double phi = 2.0 * M_PI * i / kGapConeRays;
-        const Vec3 dir = normalized(cos_t * n + sin_t * (std::cos(phi) * a + std::sin(phi) * b));
-        const double t = ps.first_hit(v, wall.points[v], dir, allowed / params.proximity_safety);
-        if (t < HUGE_VAL) allowed = std::min(allowed, params.proximity_safety * t);
-      }
-      if (allowed < extent) {
-        scale[v] *= allowed / extent;
+      if (d < HUGE_VAL && extent > params.proximity_safety * d) {
+        scale[v] *= params.proximity_safety * d / extent;
         gap_limited[v] = 1;
       }
     });

@@ -194,51 +194,6 @@ TEST(ExtrudeLayers, ThinSlotFrontsStopBeforeMeeting) {
   EXPECT_GT(r.report.n_gap_limited_columns, 0);
 }
 
-TEST(ExtrudeLayers, ThinSlotColumnsAreLimitedNotStopped) {
-  // A slot 0.1 wide and 0.2 deep through a block, 4 cells across, with a requested
-  // thickness (0.104) above the whole gap. The floor sees no wall along its own normal
-  // for the slot's depth, and the columns on the two rims of the mouth lean towards
-  // each other; all of them must be limited to below half the gap and keep every
-  // layer, rather than grow into the side walls' limited fronts and stop. The slot's
-  // open ends (triple corners where the rims meet the block's end faces) are left out.
-  const double cell = 0.025;
-  TriSurface wall =
-      test::voxel_surface({20, 8, 12}, [](int i, int, int k) { return !(i >= 8 && i < 12 && k >= 4); }, cell);
-  // Floor and slot points away from the open ends, before the shear below moves them.
-  std::vector<char> floor(wall.points.size(), 0), slot(wall.points.size(), 0);
-  for (std::size_t v = 0; v < wall.points.size(); ++v) {
-    const Vec3& w = wall.points[v];
-    slot[v] = w[0] >= 8 * cell && w[0] <= 12 * cell && w[2] >= 4 * cell && w[1] >= 2 * cell && w[1] <= 6 * cell;
-    floor[v] = w[2] == 4 * cell && w[0] > 8 * cell && w[0] < 12 * cell;
-  }
-  // A shear along the walls keeps the side walls the planes x = 8 and 12 cell (the gap
-  // stays 4 cells) but moves each wall's vertex rows off the opposite wall's, so that
-  // a column's ray meets the opposite wall inside a triangle, as on a general mesh,
-  // rather than exactly on one of its vertices.
-  for (Vec3& w : wall.points) {
-    w[1] += 0.3 * w[0];
-    w[2] += 0.2 * w[0];
-  }
-  const ExtrusionResult r = extrude_layers(wall, params(10, 0.004, 1.2));
-  expect_valid_extrusion(wall, r);
-  const double gap = 4 * cell;
-  ASSERT_GT(r.report.growth.total_thickness, gap);
-  EXPECT_GT(r.report.n_gap_limited_columns, 0);
-  int n_floor = 0, n_slot = 0;
-  for (std::size_t v = 0; v < wall.points.size(); ++v) {
-    if (slot[v]) {
-      ++n_slot;
-      EXPECT_EQ(r.column_layers[v], 10) << "slot column " << v << " stopped: " << stop_reason_name(r.stop_reason[v]);
-    }
-    if (floor[v]) {
-      ++n_floor;
-      EXPECT_LT(norm(r.envelope.points[v] - wall.points[v]), 0.5 * gap) << "floor column " << v;
-    }
-  }
-  EXPECT_GT(n_floor, 0);
-  EXPECT_GT(n_slot, n_floor);
-}
-
 TEST(ExtrudeLayers, RelativeHeightsScaleWithTheLocalEdgeLength) {
   const TriSurface wall = test::icosphere(2, 1.0);
   ExtrusionParams p = params(3, 0.1, 1.2);

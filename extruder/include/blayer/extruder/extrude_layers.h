@@ -16,10 +16,8 @@
 //   0. Heights: the growth law gives h_k (times the local mean edge length e_v when
 //      relative; e_v = mean wall edge length at v). Per column, the total is capped at
 //      max_height_to_edge_ratio times the shortest wall edge at v (height_cap_length) and
-//      at proximity_safety times the gap seen along the wall normal and along a cone of
-//      rays tilted 70 degrees around it (rays against the other wall triangles; the cone
-//      sees the side walls of a slot from its floor and the opposite wall from the rims
-//      of its mouth); both caps scale all N layers of the column alike, so the
+//      at proximity_safety times the gap seen along the wall normal (a ray against the
+//      other wall triangles); both caps scale all N layers of the column alike, so the
 //      column keeps its layers, and are smoothed downward over height_smoothing_rings.
 //   1. On the current front (same triangles, current column tops) point normals are
 //      recomputed with compute_point_normals (normal_method), and optionally smoothed
