@@ -14,7 +14,6 @@
 namespace blayer {
 namespace {
 
-using testing_fans::Shape;
 
 // A candidate within normality_tie of the optimum lies within tie / kSharpFalloff of it
 // (most_normal.cpp): the two answers may differ by that much in direction, no more.
@@ -78,18 +77,6 @@ TEST(MostNormalShortcut, MatchesEnumerationOnConvexSkins) {
   EXPECT_GT(n, 2500);
   // The generator must exercise the shortcut beyond convex corners.
   EXPECT_GT(shortcut_not_all_reflex, 500);
-}
-
-TEST(MostNormalShortcut, MatchesEnumerationOnRandomShapes) {
-  for (Shape shape : {Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kSliver, Shape::kWild}) {
-    std::mt19937 rng(99u + static_cast<unsigned>(shape));
-    for (int t = 0; t < 100; ++t) {
-      const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, shape));
-      if (g.any_degenerate) continue;
-      for (bool constrained : {false, true})
-        expect_same(g, constrained, std::string(testing_fans::shape_name(shape)) + " fan " + std::to_string(t));
-    }
-  }
 }
 
 TEST(MostNormalShortcut, MatchesEnumerationOnPublicFans) {
