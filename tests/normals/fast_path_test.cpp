@@ -26,18 +26,7 @@ std::vector<Vec3> skin_fan(std::mt19937& rng) {
   const int k = 4 + static_cast<int>(u(rng) * 6);
   const double k1 = 0.05 + u(rng), k2 = 1e-3 * u(rng);
   const double jitter = 1e-3 * u(rng);
-  std::vector<Vec3> ring;
-  double az = u(rng) * 2 * M_PI;
-  for (int i = 0; i < k; ++i) {
-    const double r = 0.5 + u(rng);
-    const double x = r * std::cos(az), y = r * std::sin(az);
-    ring.push_back({x, y, -0.5 * (k1 * x * x + k2 * y * y) + jitter * (u(rng) - 0.5)});
-    az += 2 * M_PI / k * (0.7 + 0.6 * u(rng));
-  }
-  Vec3 q[3];
-  testing_fans::random_rotation(rng, q);
-  for (Vec3& x : ring) x = testing_fans::rotate(x, q);
-  return ring;
+  return testing_fans::quadric_fan(rng, k, k1, k2, jitter);
 }
 
 bool all_junctions_reflex(const FanGeometry& g) {

@@ -40,7 +40,9 @@ void expect_same(const FanGeometry& a, const FanGeometry& b, const Vec3 q[3], co
   EXPECT_EQ(mna.status, mnb.status) << what;
   EXPECT_NEAR(mna.normality, mnb.normality, kInvariance) << what;
   EXPECT_NEAR(mna.visibility, mnb.visibility, kDirection) << what;
-  if (mna.status == NormalStatus::kOk) EXPECT_NEAR(norm(rot(mna.normal) - mnb.normal), 0.0, kDirection) << what;
+  if (mna.status == NormalStatus::kOk) {
+    EXPECT_NEAR(norm(rot(mna.normal) - mnb.normal), 0.0, kDirection) << what;
+  }
   const Vec3 an_a = weighted_average_normal(a, NormalMethod::kAngle);
   const Vec3 an_b = weighted_average_normal(b, NormalMethod::kAngle);
   EXPECT_NEAR(norm(rot(an_a) - an_b), 0.0, kInvariance) << what;

@@ -38,7 +38,9 @@ TEST_P(OracleFans, ExactMostNormalIsNeverBeaten) {
       EXPECT_EQ(oracle::fluid(link, mn.normal), 1) << "fan " << t;
       EXPECT_NEAR(mn.normality, oracle::normality(link, mn.normal), 1e-12) << "fan " << t;
       const double v_min = constrained ? 0.5 * mv.visibility : -2.0;
-      if (constrained) EXPECT_GE(oracle::visibility(link, mn.normal), v_min - 1e-12) << "fan " << t;
+      if (constrained) {
+        EXPECT_GE(oracle::visibility(link, mn.normal), v_min - 1e-12) << "fan " << t;
+      }
       const oracle::Best best = oracle::maximise(link, v_min, 3000, 99u + t, 4);
       EXPECT_GE(mn.normality, best.d - kOracleMargin)
           << testing_fans::shape_name(GetParam()) << " fan " << t << " k=" << ring.size()

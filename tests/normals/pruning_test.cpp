@@ -34,18 +34,7 @@ std::vector<Vec3> near_flat_fan(std::mt19937& rng) {
   const double scale = std::pow(10.0, -4.0 * u(rng));
   const double k1 = scale * (u(rng) - 0.3), k2 = scale * 1e-2 * (u(rng) - 0.5);
   const double jitter = scale * 1e-2 * u(rng);
-  std::vector<Vec3> ring;
-  double az = u(rng) * 2 * M_PI;
-  for (int i = 0; i < k; ++i) {
-    const double r = 0.5 + u(rng);
-    const double x = r * std::cos(az), y = r * std::sin(az);
-    ring.push_back({x, y, -0.5 * (k1 * x * x + k2 * y * y) + jitter * (u(rng) - 0.5)});
-    az += 2 * M_PI / k * (0.7 + 0.6 * u(rng));
-  }
-  Vec3 q[3];
-  testing_fans::random_rotation(rng, q);
-  for (Vec3& x : ring) x = testing_fans::rotate(x, q);
-  return ring;
+  return testing_fans::quadric_fan(rng, k, k1, k2, jitter);
 }
 
 void expect_same(const FanGeometry& g, bool constrained, const std::string& what) {

@@ -75,5 +75,23 @@ inline std::vector<Vec3> random_fan(std::mt19937& rng, Shape shape) {
   return ring;
 }
 
+// k ring points on the quadric z = -(k1 x^2 + k2 y^2) / 2 plus uniform jitter in z, at
+// irregular radii and azimuths, randomly rotated: the fan of a vertex on a curved skin.
+inline std::vector<Vec3> quadric_fan(std::mt19937& rng, int k, double k1, double k2, double jitter) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec3> ring;
+  double az = u(rng) * 2 * M_PI;
+  for (int i = 0; i < k; ++i) {
+    const double r = 0.5 + u(rng);
+    const double x = r * std::cos(az), y = r * std::sin(az);
+    ring.push_back({x, y, -0.5 * (k1 * x * x + k2 * y * y) + jitter * (u(rng) - 0.5)});
+    az += 2 * M_PI / k * (0.7 + 0.6 * u(rng));
+  }
+  Vec3 q[3];
+  random_rotation(rng, q);
+  for (Vec3& x : ring) x = rotate(x, q);
+  return ring;
+}
+
 }  // namespace testing_fans
 }  // namespace blayer
