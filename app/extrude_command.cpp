@@ -83,12 +83,6 @@ std::function<void(int, int)> progress_bar() {
   };
 }
 
-DataArray* find_or_null(std::vector<DataArray>& arrays, const std::string& name) {
-  for (DataArray& a : arrays)
-    if (a.name == name) return &a;
-  return nullptr;
-}
-
 // Appends the fill's tets to the layer mesh. Envelope point i of the fill is layer-mesh
 // point envelope_ids[i]; the fill's other points are appended.
 void append_fill(VolumeMesh& mesh, const std::vector<std::int64_t>& envelope_ids, const FillResult& fill,
