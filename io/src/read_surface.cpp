@@ -57,8 +57,10 @@ class SoupImporter : public BaseImporter {
   size_t n_edges() const override { return 0; }
 
   // Attributes blayer does not use.
-  OpenMesh::HalfedgeHandle add_edge(OpenMesh::VertexHandle, OpenMesh::VertexHandle) override { return {}; }
-  OpenMesh::FaceHandle add_face(OpenMesh::HalfedgeHandle) override { return {}; }
+  OpenMesh::HalfedgeHandle add_edge(OpenMesh::VertexHandle, OpenMesh::VertexHandle) override {
+    return OpenMesh::HalfedgeHandle();
+  }
+  OpenMesh::FaceHandle add_face(OpenMesh::HalfedgeHandle) override { return OpenMesh::FaceHandle(); }
   void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle, const std::vector<OpenMesh::Vec2f>&) override {}
   void add_face_texcoords(OpenMesh::FaceHandle, OpenMesh::VertexHandle, const std::vector<OpenMesh::Vec3f>&) override {}
   void set_face_texindex(OpenMesh::FaceHandle, int) override {}
