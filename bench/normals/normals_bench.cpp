@@ -27,6 +27,7 @@
 #include "blayer/normals/fan_geometry.h"
 #include "blayer/normals/most_normal.h"
 #include "blayer/normals/point_normals.h"
+#include "analytic_surfaces.h"
 
 namespace {
 
@@ -38,26 +39,6 @@ struct Options {
   bool stats = false;
 };
 
-TriSurface sphere(int n_lat, int n_lon) {
-  TriSurface s;
-  s.points.push_back({0, 0, 1});
-  for (int i = 1; i < n_lat; ++i)
-    for (int j = 0; j < n_lon; ++j) {
-      const double th = M_PI * i / n_lat, ph = 2 * M_PI * (j + 0.5 * (i % 2)) / n_lon;
-      s.points.push_back({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)});
-    }
-  s.points.push_back({0, 0, -1});
-  const int south = static_cast<int>(s.points.size()) - 1;
-  auto id = [&](int i, int j) { return 1 + (i - 1) * n_lon + (j % n_lon); };
-  for (int j = 0; j < n_lon; ++j) s.triangles.push_back({0, id(1, j), id(1, j + 1)});
-  for (int i = 1; i < n_lat - 1; ++i)
-    for (int j = 0; j < n_lon; ++j) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  for (int j = 0; j < n_lon; ++j) s.triangles.push_back({south, id(n_lat - 1, j + 1), id(n_lat - 1, j)});
-  return s;
-}
 
 double seconds_per_run(const TriSurface& s, const blayer::VertexFans& fans, blayer::NormalMethod m, int threads) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
@@ -189,7 +170,7 @@ int main(int argc, char** argv) {
         files.push_back(a);
       }
     }
-    if (files.empty()) run("generated sphere 200x400", sphere(200, 400), opt);
+    if (files.empty()) run("generated sphere 200x400", blayer::test_surfaces::uv_sphere(200, 400, 1.0, M_PI / 400), opt);
     for (const std::string& f : files) run(f, blayer::load_surface(f, {}).surface, opt);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -88,6 +88,31 @@ inline TriSurface box(Vec3 lo, Vec3 hi, int n, bool inward = false) {
   return s;
 }
 
+// Latitude-longitude sphere: poles plus n_lat - 1 rings of n_lon points; ring i is turned
+// by i x ring_twist radians so that no meridian lines up (vertex valences stay mixed).
+// Normals point outward.
+inline TriSurface uv_sphere(int n_lat, int n_lon, double radius, double ring_twist) {
+  TriSurface s;
+  s.points.push_back({0, 0, radius});
+  for (int i = 1; i < n_lat; ++i)
+    for (int j = 0; j < n_lon; ++j) {
+      const double th = M_PI * i / n_lat, ph = 2 * M_PI * j / n_lon + ring_twist * i;
+      s.points.push_back({radius * std::sin(th) * std::cos(ph), radius * std::sin(th) * std::sin(ph),
+                          radius * std::cos(th)});
+    }
+  s.points.push_back({0, 0, -radius});
+  const int south = static_cast<int>(s.points.size()) - 1;
+  auto id = [&](int i, int j) { return 1 + (i - 1) * n_lon + (j % n_lon); };
+  for (int j = 0; j < n_lon; ++j) s.triangles.push_back({0, id(1, j), id(1, j + 1)});
+  for (int i = 1; i < n_lat - 1; ++i)
+    for (int j = 0; j < n_lon; ++j) {
+      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  for (int j = 0; j < n_lon; ++j) s.triangles.push_back({south, id(n_lat - 1, j + 1), id(n_lat - 1, j)});
+  return s;
+}
+
 inline TriSurface flipped(TriSurface s) {
   for (Triangle& t : s.triangles) std::swap(t[1], t[2]);
   return s;

@@ -10,6 +10,7 @@
 #include "blayer/normals/point_normals.h"
 #include "blayer/normals/vertex_normal.h"
 #include "blayer/normals/weighted_normal.h"
+#include "analytic_surfaces.h"
 #include "oracle.h"
 #include "test_fans.h"
 
@@ -146,25 +147,7 @@ TEST(VertexNormal, OpenFanUsesMostVisibleOfHalfFan) {
 }
 
 TriSurface uv_sphere(int n_lat, int n_lon, double radius) {
-  TriSurface s;
-  s.points.push_back({0, 0, radius});
-  for (int i = 1; i < n_lat; ++i)
-    for (int j = 0; j < n_lon; ++j) {
-      const double th = M_PI * i / n_lat, ph = 2 * M_PI * j / n_lon + 0.37 * i;
-      s.points.push_back({radius * std::sin(th) * std::cos(ph), radius * std::sin(th) * std::sin(ph),
-                          radius * std::cos(th)});
-    }
-  s.points.push_back({0, 0, -radius});
-  const int south = static_cast<int>(s.points.size()) - 1;
-  auto id = [&](int i, int j) { return 1 + (i - 1) * n_lon + (j % n_lon); };
-  for (int j = 0; j < n_lon; ++j) s.triangles.push_back({0, id(1, j), id(1, j + 1)});
-  for (int i = 1; i < n_lat - 1; ++i)
-    for (int j = 0; j < n_lon; ++j) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  for (int j = 0; j < n_lon; ++j) s.triangles.push_back({south, id(n_lat - 1, j + 1), id(n_lat - 1, j)});
-  return s;
+  return test_surfaces::uv_sphere(n_lat, n_lon, radius, 0.37);
 }
 
 TEST(PointNormals, MaxWeightsAreExactOnSphere) {
