@@ -1,5 +1,6 @@
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -112,7 +113,8 @@ nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, 
                            std::size_t n_layer_cells, const FillStats* fill, double seconds) {
   nlohmann::json j;
   // Volumes of the layer cells and of the fill, from the check's per-cell volumes.
-  const std::vector<double>& volume = check.metrics[6];
+  const auto volume_index = std::find(kCheckMetricNames.begin(), kCheckMetricNames.end(), std::string("volume"));
+  const std::vector<double>& volume = check.metrics[volume_index - kCheckMetricNames.begin()];
   double layers_volume = 0.0, fill_volume = 0.0;
   for (std::size_t c = 0; c < volume.size(); ++c) (c < n_layer_cells ? layers_volume : fill_volume) += volume[c];
   j["volume"] = {{"layers", layers_volume}, {"fill", fill_volume}};
