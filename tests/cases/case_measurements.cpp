@@ -77,6 +77,8 @@ void flatten_numbers(const nlohmann::json& j, const std::string& prefix, std::ma
     (*out)[prefix] = j.get<bool>() ? 1.0 : 0.0;
   } else if (j.is_object()) {
     for (const auto& [k, v] : j.items()) flatten_numbers(v, prefix.empty() ? k : prefix + "." + k, out);
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) flatten_numbers(j[i], prefix + "." + std::to_string(i), out);
   }
 }
 

@@ -31,8 +31,8 @@ int run_command(const std::string& command, const std::string& stdout_path, cons
 // points (the contract the measure relies on), naming the first point that differs.
 nlohmann::json measure_case_fidelity(const std::string& mesh_path, const CaseSettings& settings);
 
-// Every number in j by its dotted path ("check.cells.wedge"); booleans count as 0 / 1,
-// arrays and nulls are skipped.
+// Every number in j by its dotted path ("check.cells.wedge"; array elements by index,
+// "columns.per_layer.9"); booleans count as 0 / 1, nulls are skipped.
 void flatten_numbers(const nlohmann::json& j, const std::string& prefix, std::map<std::string, double>* out);
 
 }  // namespace blayer::cases

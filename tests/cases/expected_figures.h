@@ -32,9 +32,11 @@ std::vector<ExpectedFigure> read_expected_figures(const std::string& path, int* 
 bool figure_passes(const ExpectedFigure& f, double actual, std::string* accepted);
 
 // The text of expected.toml with every figure's value replaced by the measured one
-// (actual[name]; figures without a measurement keep their value), operators,
-// tolerances, comments and all other lines kept as they are. Values are printed with
-// enough digits for their tolerance (all 17 for == and untoleranced bounds).
+// (actual[name]), operators, tolerances, comments and all other lines kept as they are.
+// Kept as well: the values of figures without a measurement, and of figures whose comment
+// says "closed form" or "derived" (those are what the figure must be; a difference is a
+// failure to look into, not a new value). Values are printed with enough digits for
+// their tolerance (all 17 for == and untoleranced bounds).
 std::string rewrite_with_measured(const std::string& toml_text, const std::map<std::string, double>& actual);
 
 }  // namespace blayer::cases

@@ -90,6 +90,19 @@ TEST(ExpectedFigures, RewriteFillsInMeasuredValuesAndKeepsEverythingElse) {
             "\"untouched\" = [\"<=\", 3]\n");
 }
 
+TEST(ExpectedFigures, RewriteKeepsClosedFormAndDerivedValues) {
+  const std::string text =
+      "\"check.cells.wedge\" = [\"==\", 6920]  # derived: 1,384 x 5\n"
+      "\"volume.layers\" = [\"~=\", 0.5811298613, 1e-12]  # closed form (1 + 2T)^3 - 1\n"
+      "\"coverage\" = [\"~=\", 0.86, 1e-9]  # measured\n";
+  const std::string out =
+      rewrite_with_measured(text, {{"check.cells.wedge", 6921}, {"volume.layers", 0.6}, {"coverage", 0.87}});
+  EXPECT_EQ(out,
+            "\"check.cells.wedge\" = [\"==\", 6920]  # derived: 1,384 x 5\n"
+            "\"volume.layers\" = [\"~=\", 0.5811298613, 1e-12]  # closed form (1 + 2T)^3 - 1\n"
+            "\"coverage\" = [\"~=\", 0.87, 1e-9]  # measured\n");
+}
+
 TEST(ExpectedFigures, RewrittenValuesPassTheirOwnFigures) {
   // The printed digits must be enough for the tolerance: a figure refilled with its
   // measured value passes against that same measurement.
