@@ -42,6 +42,7 @@ EdgeTopology build_edge_topology(const TriSurface& s) {
     }
 
   EdgeTopology out;
+  [[maybe_unused]] std::size_t n_uses = 0;
   for (int lo = 0; lo < nv; ++lo) {
     // Stable: uses of one edge stay in triangle order.
     std::stable_sort(uses.begin() + start[lo], uses.begin() + start[lo + 1],
@@ -61,6 +62,7 @@ EdgeTopology build_edge_topology(const TriSurface& s) {
         n_forward += uses[j].forward ? 1 : 0;
       }
       e.kind = classify(e, n_forward);
+      n_uses += static_cast<std::size_t>(e.n_uses);
       out.n_boundary += e.kind == EdgeKind::kBoundary;
       out.n_non_manifold += e.kind == EdgeKind::kNonManifold;
       out.n_inconsistent += e.kind == EdgeKind::kInconsistent;
@@ -68,6 +70,7 @@ EdgeTopology build_edge_topology(const TriSurface& s) {
       i = j;
     }
   }
+  BLAYER_EXPENSIVE_ASSERT(n_uses == uses.size());  // every use lands in exactly one edge
   return out;
 }
 

@@ -6,6 +6,18 @@
 
 namespace blayer {
 
+namespace {
+
+// u is v's neighbour exactly when v is u's (rows sorted).
+[[maybe_unused]] bool is_symmetric(const CsrTable& nbr) {
+  for (int v = 0; v < nbr.n_rows(); ++v)
+    for (const int* u = nbr.begin(v); u != nbr.end(v); ++u)
+      if (!std::binary_search(nbr.begin(*u), nbr.end(*u), v)) return false;
+  return true;
+}
+
+}  // namespace
+
 CsrTable vertex_triangles(const TriSurface& s) {
   const int nv = static_cast<int>(s.points.size());
   CsrTable c;
@@ -41,6 +53,7 @@ CsrTable vertex_neighbours(const TriSurface& s, const CsrTable& vtri) {
     c.start[v + 1] = static_cast<int>(c.items.size());
   }
   c.items.shrink_to_fit();
+  BLAYER_EXPENSIVE_ASSERT(is_symmetric(c));
   return c;
 }
 
