@@ -12,7 +12,7 @@ namespace blayer::fill_detail {
 
 class SizeField {
  public:
-  // sites and sizes have equal, non-zero length; slope >= 0.
+  // sites and sizes have equal, non-zero length; slope >= 0 (BLAYER_ASSERT).
   SizeField(std::vector<Vec3> sites, std::vector<double> sizes, double slope);
 
   double operator()(const Vec3& x) const;
