@@ -32,9 +32,15 @@ ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, s
   g.total_thickness = p.get_real("total-thickness");
   g.last_height = p.get_real("last-height");
   g.relative = p.get_bool("relative-heights");
-  std::string note;
-  e.growth = with_default_first_height(g, bounding_box_diagonal(wall.points), &note);
-  if (!note.empty()) notes->push_back(note);
+  // The default height is for a user who gave none of the three options; an explicit
+  // 0 is the growth law's "derive it" and is left to the law's own checks.
+  e.growth = g;
+  if (!p.is_set("first-height") && !p.is_set("total-thickness") && !p.is_set("last-height")) {
+    if (g.relative) throw InputError("--relative-heights needs first-height, total-thickness or last-height");
+    std::string note;
+    e.growth = with_default_first_height(g, bounding_box_diagonal(wall.points), &note);
+    notes->push_back(note);
+  }
   if (!parse_normal_method(p.get_string("method"), &e.normal_method))
     throw InputError("--method: unknown normal method '" + p.get_string("method") + "'");
   e.normal_smoothing_iterations = p.get_int("normal-smoothing");
