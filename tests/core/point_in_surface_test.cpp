@@ -9,10 +9,7 @@
 namespace blayer {
 namespace {
 
-using test_surfaces::box;
-using test_surfaces::flipped;
-using test_surfaces::icosphere;
-using test_surfaces::merged;
+using namespace test_surfaces;  // box, flipped, icosphere, merged
 
 // Oracle: strictly behind every face plane of a convex outward surface, and the signed
 // distance to the nearest plane (to skip points too close to call).
