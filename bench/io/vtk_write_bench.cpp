@@ -5,12 +5,15 @@
 // triangles, extruded by `layers` prisms with growth 1.2.
 //
 // Usage: vtk_write_bench [n=500] [layers=10] [repeats=3] [dir=$TMPDIR]
-//   (default 5,000,000 prisms, about 2 GB of memory and 2 GB of disk in dir).
+//   (default 5,000,000 prisms, about 2.5 GB of memory and 2 GB of disk in dir), or
+//        vtk_write_bench MESH.vtu [repeats=3] [dir=$TMPDIR]
+//   to measure on a real mesh written by blayer (real coordinates and metrics compress
+//   less well than the generated ones).
 //
 // Every encoding writes the same vtkUnstructuredGrid (read back from a file written
 // by write_vtu, so it holds exactly the arrays write_vtu hands to VTK), which isolates
 // the encoding from the conversion of blayer's arrays; write_vtu itself is timed at
-// the end. Runs are interleaved round-robin over the encodings so that load from other
+// the end on the generated mesh. Runs are interleaved round-robin over the encodings so that load from other
 // processes spreads over all of them; the fastest of `repeats` runs is reported (ASCII
 // runs once: it is the slowest by far). Ratios are against the appended raw LZ4 layout
 // blayer wrote before, which is not well-formed XML.
@@ -151,25 +154,37 @@ struct Result {
   Timing read;
 };
 
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int n = argc > 1 ? std::atoi(argv[1]) : 500;
-  const int layers = argc > 2 ? std::atoi(argv[2]) : 10;
-  const int repeats = argc > 3 ? std::atoi(argv[3]) : 3;
-  const std::filesystem::path dir = (argc > 4 ? std::filesystem::path(argv[4]) : std::filesystem::temp_directory_path()) /
-                                    ("blayer-vtk-write-bench-" + std::to_string(::getpid()));
+  const bool from_file = argc > 1 && ends_with(argv[1], ".vtu");
+  const int shift = from_file ? 1 : 0;  // a file replaces the two mesh-size arguments
+  const int n = !from_file && argc > 1 ? std::atoi(argv[1]) : 500;
+  const int layers = !from_file && argc > 2 ? std::atoi(argv[2]) : 10;
+  const int repeats = argc > 3 - shift ? std::atoi(argv[3 - shift]) : 3;
+  const std::filesystem::path dir =
+      (argc > 4 - shift ? std::filesystem::path(argv[4 - shift]) : std::filesystem::temp_directory_path()) /
+      ("blayer-vtk-write-bench-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   auto file = [&](std::size_t i) { return (dir / ("e" + std::to_string(i) + ".vtu")).string(); };
 
   blayer::VolumeMesh mesh;
-  const Timing t_gen = time_it([&] { mesh = make_prism_mesh(n, layers); });
-  std::printf("mesh: %zu prisms, %zu points, %zu point and %zu cell arrays (generated in %.1f s)\n", mesh.n_cells(),
-              mesh.points.size(), mesh.point_data.size(), mesh.cell_data.size(), t_gen.wall);
-
-  const std::string seed = (dir / "seed.vtu").string();
-  blayer::write_vtu(mesh, seed);
+  const std::string seed = from_file ? std::string(argv[1]) : (dir / "seed.vtu").string();
+  if (!from_file) {
+    const Timing t_gen = time_it([&] { mesh = make_prism_mesh(n, layers); });
+    std::printf("mesh: %zu prisms, %zu points, %zu point and %zu cell arrays (generated in %.1f s)\n", mesh.n_cells(),
+                mesh.points.size(), mesh.point_data.size(), mesh.cell_data.size(), t_gen.wall);
+    blayer::write_vtu(mesh, seed);
+  }
   const vtkSmartPointer<vtkUnstructuredGrid> grid = read_grid(seed);
+  const vtkIdType n_cells = grid->GetNumberOfCells();
+  if (from_file)
+    std::printf("mesh: %s, %lld cells, %lld points\n", seed.c_str(), static_cast<long long>(n_cells),
+                static_cast<long long>(grid->GetNumberOfPoints()));
 
   std::vector<Result> results(kEncodings.size());
   for (int r = 0; r < repeats; ++r)
@@ -183,9 +198,9 @@ int main(int argc, char** argv) {
     results[i].mb = static_cast<double>(std::filesystem::file_size(file(i))) / 1e6;
     vtkIdType cells = 0;
     results[i].read = time_it([&] { cells = read_grid(file(i))->GetNumberOfCells(); });
-    if (cells != static_cast<vtkIdType>(mesh.n_cells())) {
-      std::fprintf(stderr, "%s: read back %lld cells of %zu\n", kEncodings[i].name, static_cast<long long>(cells),
-                   mesh.n_cells());
+    if (cells != n_cells) {
+      std::fprintf(stderr, "%s: read back %lld cells of %lld\n", kEncodings[i].name, static_cast<long long>(cells),
+                   static_cast<long long>(n_cells));
       return 1;
     }
     std::filesystem::remove(file(i));
@@ -201,6 +216,10 @@ int main(int argc, char** argv) {
                 x.mb / ref.mb, x.read.wall);
   }
 
+  if (from_file) {
+    std::filesystem::remove_all(dir);
+    return 0;
+  }
   // write_vtu end to end: the encoding plus handing blayer's arrays to VTK.
   Timing best{1e300, 0.0};
   for (int r = 0; r < repeats; ++r) {
