@@ -88,10 +88,10 @@ void expect_same_mesh(const VolumeMesh& back, const VolumeMesh& m) {
   EXPECT_EQ(back.connectivity, m.connectivity);
 }
 
-TEST(VtkIo, VtuRoundTripKeepsEveryCellTypeAndArrayKind) {
+void expect_round_trip_keeps_every_cell_type_and_array_kind(const VtkWriteOptions& options) {
   TempDir dir;
   const VolumeMesh m = testing::mixed_mesh();
-  write_vtu(m, dir.file("m.vtu"));
+  write_vtu(m, dir.file("m.vtu"), options);
   const VolumeMeshFile back = read_volume_mesh(dir.file("m.vtu"));
   EXPECT_EQ(back.n_skipped_lower_dimension, 0);
   expect_same_mesh(back.mesh, m);
@@ -112,6 +112,14 @@ TEST(VtkIo, VtuRoundTripKeepsEveryCellTypeAndArrayKind) {
       EXPECT_EQ(b->values[i], a.single_precision ? static_cast<double>(static_cast<float>(a.values[i])) : a.values[i])
           << a.name << "[" << i << "]";
   }
+}
+
+TEST(VtkIo, VtuRoundTripKeepsEveryCellTypeAndArrayKind) {
+  expect_round_trip_keeps_every_cell_type_and_array_kind(VtkWriteOptions{});
+}
+
+TEST(VtkIo, Lz4VtuRoundTripKeepsEveryCellTypeAndArrayKind) {
+  expect_round_trip_keeps_every_cell_type_and_array_kind(VtkWriteOptions{VtkCompressor::kLz4});
 }
 
 // Files written before the output became inline base64: appended raw binary (not XML
