@@ -7,7 +7,8 @@
 // strict parsers (expat, as in ParaView and Python's xml.etree; xmllint) and meshio
 // read it. The appended raw layout (bytes after <AppendedData encoding="raw">) is not
 // used: it is not XML, and ParaView 5.11 with Debian 12's expat 2.5 opens such a file
-// with no cells.
+// with no cells. libxml2 refuses text nodes over 10 MB unless asked (xmllint --huge,
+// lxml's huge_tree): a large mesh's arrays exceed that, while expat has no such limit.
 //
 // The compressor trades write time for size and for who can read the file. Measured
 // with bench/io/vtk_write_bench (CPU seconds of the VTK writer alone, fastest of 3 runs
