@@ -81,9 +81,14 @@ struct TriangleNames {
 // Face sizes and vertex indices, before anything is built from them.
 void check_faces(const PolygonSoup& soup, ProblemList& problems) {
   const int nv = static_cast<int>(soup.points.size());
-  for (int i = 0; i < nv; ++i)
-    if (!is_finite(soup.points[i]))
-      problems.add("non-finite coordinates", "vertex " + std::to_string(i) + " at " + fmt_point(soup.points[i]));
+  for (int i = 0; i < nv; ++i) {
+    const Vec3& p = soup.points[i];
+    if (!is_finite(p))
+      problems.add("non-finite coordinates", "vertex " + std::to_string(i) + " at " + fmt_point(p));
+    else if (std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}) > kMaxCoordinateMagnitude)
+      problems.add("coordinates too large to compute with (|x| > 1e75: areas and normals would overflow)",
+                   "vertex " + std::to_string(i) + " at " + fmt_point(p));
+  }
   for (int f = 0; f < static_cast<int>(soup.faces.size()); ++f) {
     const auto& face = soup.faces[f];
     if (face.size() < 3) {
@@ -223,6 +228,7 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
   problems.raise_if_any();
 
   PreparedSurface out;
+  out.notes = soup.notes;
   std::vector<int> source_face;
   const int n_polygons = triangulate(soup, out.surface, source_face);
   const TriSurface& s = out.surface;

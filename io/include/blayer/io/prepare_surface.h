@@ -2,7 +2,8 @@
 // polygons, every input check, and orientation towards the fluid.
 //
 // Checks (each problem names the file, the element index in the file and the problem):
-//   no faces; non-finite coordinates; faces with fewer than 3 vertices, out-of-range or
+//   no faces; non-finite coordinates; coordinates beyond kMaxCoordinateMagnitude; faces
+//   with fewer than 3 vertices, out-of-range or
 //   repeated vertex indices; degenerate (zero-area) triangles; duplicate triangles;
 //   edges shared by more than two triangles (non-manifold edges); open boundary edges
 //   (holes), unless open surfaces are allowed; neighbours with opposite winding
@@ -24,6 +25,12 @@
 namespace blayer {
 
 enum class Side { kOutward, kInward };
+
+// Largest accepted |coordinate|. Areas and normals multiply four coordinate differences
+// (a squared cross product); below 1e75 even (2 x 1e75)^4 = 1.6e301 stays under
+// double's 1.8e308, so no geometric computation overflows. No model in any length unit
+// comes near it; a file that does holds garbage or a unit error.
+inline constexpr double kMaxCoordinateMagnitude = 1e75;
 
 struct PrepareOptions {
   Side side = Side::kOutward;

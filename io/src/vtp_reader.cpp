@@ -1,0 +1,116 @@
+// VTK XML PolyData (.vtp), through VTK's reader (the format has too many encodings to
+// parse by hand: ascii, base64, appended raw, four compressors).
+//
+// VTK reports problems (its XML parser's included) through the global output window,
+// which would print them before blayer's own "error:" line and does not always set the
+// reader's error code. While reading, a capturing window replaces it: any error text
+// means the file cannot be used, and the first one becomes part of the InputError.
+#include <vtkCellArray.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <cmath>
+#include <string>
+
+#include "surface_parsers.h"
+
+namespace blayer::detail {
+
+namespace {
+
+class CapturingOutputWindow : public vtkOutputWindow {
+ public:
+  static CapturingOutputWindow* New();
+  vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow);
+
+  void DisplayErrorText(const char* text) override { keep(text); }
+  void DisplayWarningText(const char*) override {}
+  void DisplayGenericWarningText(const char*) override {}
+  void DisplayDebugText(const char*) override {}
+  void DisplayText(const char*) override {}
+
+  const std::string& first_error() const { return first_; }
+
+ private:
+  // VTK's text is "ERROR: In <source file>, line <n>\n<class> (<address>): <message>";
+  // only the message says something about the file.
+  void keep(const char* text) {
+    if (!first_.empty() || !text) return;
+    first_ = text;
+    if (first_.rfind("ERROR: In ", 0) == 0 && first_.find('\n') != std::string::npos)
+      first_ = first_.substr(first_.find('\n') + 1);
+    if (first_.rfind("vtk", 0) == 0 && first_.find("): ") != std::string::npos)
+      first_ = first_.substr(first_.find("): ") + 3);
+    while (!first_.empty() && (first_.back() == '\n' || first_.back() == ' ')) first_.pop_back();
+    first_ = first_.substr(0, 300);
+  }
+  std::string first_;
+};
+vtkStandardNewMacro(CapturingOutputWindow);
+
+// Installs a capturing window, and silences VTK's logger (which prints errors to stderr
+// besides the window), for its lifetime; then puts both back.
+class CapturedVtkErrors {
+ public:
+  CapturedVtkErrors()
+      : previous_(vtkOutputWindow::GetInstance()), verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
+    vtkOutputWindow::SetInstance(window_);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~CapturedVtkErrors() {
+    vtkLogger::SetStderrVerbosity(verbosity_);
+    vtkOutputWindow::SetInstance(previous_);
+  }
+  CapturedVtkErrors(const CapturedVtkErrors&) = delete;
+  CapturedVtkErrors& operator=(const CapturedVtkErrors&) = delete;
+  const std::string& first() const { return window_->first_error(); }
+
+ private:
+  vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkLogger::Verbosity verbosity_;
+  vtkNew<CapturingOutputWindow> window_;
+};
+
+}  // namespace
+
+PolygonSoup parse_vtp(std::string_view bytes, const std::string& name) {
+  CapturedVtkErrors messages;
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->ReadFromInputStringOn();
+  reader->SetInputString(std::string(bytes));
+  reader->Update();
+  vtkPolyData* poly = reader->GetOutput();
+  if (reader->GetErrorCode() != 0 || !messages.first().empty() || !poly)
+    fail_at(name, 0, "cannot parse the .vtp file" + (messages.first().empty() ? "" : " (VTK: " + messages.first() + ")"));
+  if (poly->GetNumberOfStrips() > 0) fail_at(name, 0, "triangle strips are not supported; convert them to triangles");
+  PolygonSoup soup;
+  const vtkIdType np = poly->GetNumberOfPoints();
+  soup.points.resize(static_cast<std::size_t>(np));
+  for (vtkIdType i = 0; i < np; ++i) {
+    poly->GetPoint(i, soup.points[i].data());
+    for (double c : soup.points[i])
+      if (!std::isfinite(c)) fail_at(name, 0, "point " + std::to_string(i) + ": a coordinate is not a finite number");
+  }
+  vtkCellArray* polys = poly->GetPolys();
+  const vtkIdType* ids = nullptr;
+  vtkIdType n = 0;
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);) {
+    std::vector<int> face;
+    face.reserve(static_cast<std::size_t>(n));
+    for (vtkIdType k = 0; k < n; ++k) {
+      if (ids[k] < -2147483648LL || ids[k] > 2147483647LL)
+        fail_at(name, 0, "polygon " + std::to_string(soup.faces.size()) + ": point index " + std::to_string(ids[k]) +
+                             " does not fit an int");
+      face.push_back(static_cast<int>(ids[k]));
+    }
+    soup.faces.push_back(std::move(face));
+  }
+  return soup;
+}
+
+}  // namespace blayer::detail
