@@ -11,6 +11,8 @@
 #include "blayer/core/errors.h"
 #include "blayer/core/surface_components.h"
 #include "blayer/core/vertex_fans.h"
+#include "blayer/io/shell_nesting.h"
+#include "blayer/io/surface_intersections.h"
 
 namespace blayer {
 
@@ -19,6 +21,10 @@ namespace {
 // Problems of one kind are listed up to this many; the rest are counted. Enough to see
 // a pattern, short enough to read on a terminal.
 constexpr int kListedPerKind = 5;
+
+// Intersecting triangle pairs searched for at most: enough to count a local problem
+// exactly, and a bound on the memory a badly broken surface can take.
+constexpr std::size_t kMaxIntersectionPairs = 100000;
 
 class ProblemList {
  public:
@@ -173,48 +179,96 @@ void check_vertices(const TriSurface& s, ProblemList& problems) {
                      ": its triangles form more than one fan (surfaces touching at a point)");
 }
 
-// Flips each component as needed so that its normals point into the fluid, and says so
-// in out.notes. Precondition: the surface passed every other check (edge-manifold,
-// consistently oriented).
-void orient_components(const EdgeTopology& edges, const PrepareOptions& opt, const Tolerances& tol,
-                       ProblemList& problems, PreparedSurface& out) {
-  TriSurface& s = out.surface;
+// The edge-connected components, which are closed, and their signed volumes.
+struct ComponentTable {
+  SurfaceComponents components;
+  std::vector<char> closed;
+  std::vector<double> volume;
+};
+
+// Precondition: the surface passed every topology check (edge-manifold, consistently
+// oriented). Reports closed components that enclose no volume.
+ComponentTable find_components(const TriSurface& s, const EdgeTopology& edges, const Tolerances& tol,
+                               ProblemList& problems) {
   BLAYER_ASSERT(edges.n_non_manifold == 0 && edges.n_inconsistent == 0);
-  const SurfaceComponents comps = edge_connected_components(s, edges);
-  out.n_components = comps.count;
-  const std::vector<int>& comp = comps.of_triangle;
-  std::vector<char> comp_open(out.n_components, 0);
+  ComponentTable ct;
+  ct.components = edge_connected_components(s, edges);
+  const int n = ct.components.count;
+  ct.closed.assign(n, 1);
   for (const SurfaceEdge& e : edges.edges)
-    if (e.kind == EdgeKind::kBoundary) comp_open[comp[e.triangle[0]]] = 1;
-  const std::vector<double> volume = component_signed_volumes(s, comps);
+    if (e.kind == EdgeKind::kBoundary) ct.closed[ct.components.of_triangle[e.triangle[0]]] = 0;
+  ct.volume = component_signed_volumes(s, ct.components);
   const double diag = bounding_box_diagonal(s.points);
-  std::vector<char> flip(out.n_components, 0);
-  for (int c = 0; c < out.n_components; ++c) {
-    if (comp_open[c]) {
-      flip[c] = opt.side == Side::kInward;
-      continue;
-    }
+  for (int c = 0; c < n; ++c)
     // A closed component whose volume is this small relative to the model is flat
     // (e.g. a doubled sheet): it has no inside to decide a side from.
-    if (std::abs(volume[c]) <= tol.degenerate_relative_height * diag * diag * diag)
+    if (ct.closed[c] && std::abs(ct.volume[c]) <= tol.degenerate_relative_height * diag * diag * diag)
       problems.add("closed components enclosing no volume", "component " + std::to_string(c) +
-                                                                " (signed volume " + std::to_string(volume[c]) + ")");
-    out.enclosed_volume += std::abs(volume[c]);
-    const bool points_outward = volume[c] > 0;
-    flip[c] = (opt.side == Side::kOutward) != points_outward;
+                                                                " (signed volume " + std::to_string(ct.volume[c]) + ")");
+  return ct;
+}
+
+// Triangles that cross or touch away from their shared vertices: within one component
+// the surface passes through itself; across components two shells cross, so layers
+// would grow inside the other solid.
+void check_intersections(const TriSurface& s, const TriangleNames& name, const ComponentTable& ct,
+                         ProblemList& problems) {
+  const std::vector<int>& comp = ct.components.of_triangle;
+  for (const TrianglePairIntersection& x : find_surface_intersections(s, kMaxIntersectionPairs)) {
+    const std::string pair = name(x.a) + " and " + name(x.b) + " meet near " + fmt_point(x.near);
+    if (comp[x.a] == comp[x.b])
+      problems.add("self-intersections (the surface passes through itself)",
+                   "component " + std::to_string(comp[x.a]) + ": " + pair);
+    else
+      problems.add("intersecting components (one body's surface passes through another's)",
+                   "components " + std::to_string(comp[x.a]) + " and " + std::to_string(comp[x.b]) + ": " + pair);
   }
+}
+
+// Flips each component as needed so that its normals point into the fluid, and says so
+// in out.notes. Closed components are oriented by their nesting depth (shell_nesting.h);
+// open ones keep the file's winding, reversed for --side inward. Precondition: the
+// components do not intersect (check_intersections found nothing).
+void orient_components(const ComponentTable& ct, const PrepareOptions& opt, ProblemList& problems,
+                       PreparedSurface& out) {
+  TriSurface& s = out.surface;
+  const int n = ct.components.count;
+  out.n_components = n;
+  const ShellNesting nesting = nest_closed_components(s, ct.components, ct.closed);
+  for (int c : nesting.undecided)
+    problems.add("components whose nesting cannot be decided",
+                 "component " + std::to_string(c) + ": every ray from it grazes an edge or vertex of another");
   problems.raise_if_any();
+  const bool inward = opt.side == Side::kInward;
+  std::vector<char> flip(n, 0);
+  for (int c = 0; c < n; ++c) {
+    if (!ct.closed[c]) {
+      flip[c] = inward;
+      continue;
+    }
+    out.enclosed_volume += std::abs(ct.volume[c]);
+    const bool points_outward = ct.volume[c] > 0;
+    flip[c] = fluid_is_outside(nesting.depth[c], inward) != points_outward;
+  }
   for (std::size_t t = 0; t < s.triangles.size(); ++t)
-    if (flip[comp[t]]) std::swap(s.triangles[t][1], s.triangles[t][2]);
-  for (int c = 0; c < out.n_components; ++c) {
+    if (flip[ct.components.of_triangle[t]]) std::swap(s.triangles[t][1], s.triangles[t][2]);
+  for (int c = 0; c < n; ++c) {
+    const std::string comp = "component " + std::to_string(c);
+    if (ct.closed[c] && nesting.depth[c] > 0)
+      out.notes.push_back("closed " + comp + " lies inside component " + std::to_string(nesting.enclosing[c]) +
+                          " (nesting depth " + std::to_string(nesting.depth[c]) + "): it bounds " +
+                          (fluid_is_outside(nesting.depth[c], inward) ? "a body in a fluid region, fluid outside"
+                                                                      : "a cavity, fluid inside") +
+                          ", and its layers grow into the fluid");
     if (!flip[c]) continue;
     ++out.n_flipped_components;
-    if (comp_open[c])
-      out.notes.push_back("open component " + std::to_string(c) + ": winding reversed for --side inward");
+    if (!ct.closed[c])
+      out.notes.push_back("open " + comp + ": winding reversed for --side inward");
     else
-      out.notes.push_back(std::string("closed component ") + std::to_string(c) + " was oriented " +
-                          (volume[c] > 0 ? "outward" : "inward") + "; flipped so that layers grow " +
-                          (opt.side == Side::kOutward ? "outward (external flow)" : "inward (internal flow)"));
+      out.notes.push_back("closed " + comp + " was oriented " + (ct.volume[c] > 0 ? "outward" : "inward") +
+                          "; flipped so that its layers grow into the fluid (" +
+                          (fluid_is_outside(nesting.depth[c], inward) ? "outside" : "inside") + " it, " +
+                          (inward ? "--side inward" : "--side outward") + ")");
   }
 }
 
@@ -245,7 +299,11 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
   check_vertices(s, problems);
   problems.raise_if_any();
 
-  orient_components(edges, opt, tol, problems, out);
+  const ComponentTable components = find_components(s, edges, tol, problems);
+  problems.raise_if_any();
+  check_intersections(s, name, components, problems);
+  problems.raise_if_any();
+  orient_components(components, opt, problems, out);
   out.closed = edges.n_boundary == 0;
   if (!out.closed)
     out.notes.push_back("open surface (" + std::to_string(edges.n_boundary) +

@@ -1,18 +1,28 @@
 // Turning what a file holds into a wall surface blayer can extrude: triangulation of
 // polygons, every input check, and orientation towards the fluid.
 //
-// Checks (each problem names the file, the element index in the file and the problem):
-//   no faces; non-finite coordinates; coordinates beyond kMaxCoordinateMagnitude; faces
-//   with fewer than 3 vertices, out-of-range or
-//   repeated vertex indices; degenerate (zero-area) triangles; duplicate triangles;
-//   edges shared by more than two triangles (non-manifold edges); open boundary edges
-//   (holes), unless open surfaces are allowed; neighbours with opposite winding
-//   (inconsistent orientation); vertices used by no triangle; vertices whose triangles
-//   form more than one fan (non-manifold vertices); closed components enclosing no volume.
-// Orientation: each closed connected component is oriented so that its triangles'
-// normals point into the fluid: outward (away from the enclosed volume) for --side
-// outward, inward for --side inward. Components are flipped as needed, with a note.
-// Open surfaces keep the file's winding (reversed for --side inward).
+// Checks, in order (each problem names the file, the element index in the file and the
+// problem; one stage's problems are all reported before the next stage runs):
+//   1. no faces; non-finite coordinates; coordinates beyond kMaxCoordinateMagnitude;
+//      faces with fewer than 3 vertices, out-of-range or repeated vertex indices;
+//   2. degenerate (zero-area) triangles; duplicate triangles; edges shared by more than
+//      two triangles (non-manifold edges); open boundary edges (holes), unless open
+//      surfaces are allowed; neighbours with opposite winding (inconsistent orientation);
+//   3. vertices used by no triangle; vertices whose triangles form more than one fan
+//      (non-manifold vertices);
+//   4. closed components enclosing no volume;
+//   5. self-intersections (two triangles of one component that cross or touch away from
+//      their shared vertices) and intersecting components (triangles of two components
+//      that do), decided exactly (surface_intersections.h), listed with both triangles,
+//      their vertices and a point near where they meet;
+//   6. closed components whose nesting ray parity cannot decide (shell_nesting.h).
+// Orientation: each closed component is oriented so that its triangles' normals point
+// into the fluid, decided by its nesting depth (shell_nesting.h): with --side outward a
+// body's skin points outward and a cavity inside a body points into the cavity; with
+// --side inward a duct's wall points inward and a body inside the duct outward.
+// Components are flipped as needed, with a note, and nested ones get a note saying
+// which side is fluid. Open surfaces keep the file's winding (reversed for --side
+// inward).
 #pragma once
 
 #include <string>
