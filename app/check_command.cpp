@@ -36,8 +36,8 @@ int run_check_command(const ParamValues& params) {
   if (!bad.empty()) write_vtu(extract_bad_cells(file.mesh, report), bad_tmp);
   outputs.commit();
   if (!report.ok()) {
-    std::printf("INVALID: %zu inverted, %zu flat, %zu non-conforming cells\n", report.totals.inverted,
-                report.totals.flat, report.totals.non_conforming);
+    std::printf("INVALID: %zu inverted, %zu twisted, %zu flat, %zu non-conforming cells\n", report.totals.inverted,
+                report.totals.twisted, report.totals.flat, report.totals.non_conforming);
     return 2;
   }
   std::printf("valid\n");

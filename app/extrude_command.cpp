@@ -144,7 +144,8 @@ MeshCheckReport decide_validity(VolumeMesh& mesh) {
   add_quality_arrays(mesh, check);
   if (!check.ok())
     throw std::runtime_error("the assembled mesh failed the independent check (" +
-                             std::to_string(check.totals.inverted) + " inverted, " + std::to_string(check.totals.flat) +
+                             std::to_string(check.totals.inverted) + " inverted, " +
+                             std::to_string(check.totals.twisted) + " twisted, " + std::to_string(check.totals.flat) +
                              " flat, " + std::to_string(check.totals.non_conforming) +
                              " non-conforming); no mesh written");
   return check;

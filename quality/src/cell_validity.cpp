@@ -46,17 +46,34 @@ const std::array<int, 4>* validity_tets(CellType type, std::size_t* count) {
   return nullptr;
 }
 
+std::size_t corner_tet_count(CellType type) {
+  switch (type) {
+    case CellType::kTet: return 1;
+    case CellType::kPyramid: return 4;
+    case CellType::kWedge: return 6;
+    case CellType::kHex: return 8;
+  }
+  return 0;
+}
+
 Validity cell_validity(CellType type, const Vec3* corners) {
   std::size_t n = 0;
   const std::array<int, 4>* tets = validity_tets(type, &n);
-  bool flat = false;
+  const std::size_t n_corner = corner_tet_count(type);
+  bool flat = false, split_fails = false;
+  // The corner tets come first, so every corner is decided before any split tet.
   for (std::size_t i = 0; i < n; ++i) {
     const std::array<int, 4>& t = tets[i];
     const int s = orient3d_sign(corners[t[0]], corners[t[1]], corners[t[2]], corners[t[3]]);
-    if (s < 0) return Validity::kInverted;
-    if (s == 0) flat = true;
+    if (i < n_corner) {
+      if (s < 0) return Validity::kInverted;
+      if (s == 0) flat = true;
+    } else if (s <= 0) {
+      split_fails = true;
+    }
   }
-  return flat ? Validity::kFlat : Validity::kValid;
+  if (flat) return Validity::kFlat;
+  return split_fails ? Validity::kTwisted : Validity::kValid;
 }
 
 bool prism_is_valid(const Vec3 corners[6]) {

@@ -15,7 +15,8 @@ void append_counts(std::string& out, const CheckCounts& c, const char* indent) {
   out += "cells: " + std::to_string(c.cells) + " (";
   for (int t = 0; t < 4; ++t) out += std::string(t ? ", " : "") + kTypeNames[t] + " " + std::to_string(c.by_type[t]);
   out += ")\n";
-  out += std::string(indent) + "inverted: " + std::to_string(c.inverted) + "  flat: " + std::to_string(c.flat) +
+  out += std::string(indent) + "inverted: " + std::to_string(c.inverted) + "  twisted: " + std::to_string(c.twisted) +
+         "  flat: " + std::to_string(c.flat) +
          "  non-conforming: " + std::to_string(c.non_conforming) + "\n";
   char line[256];
   std::snprintf(line, sizeof line, "%s%-20s %10s %11s %11s %11s %11s %11s %11s %11s\n", indent, "metric", "count",
@@ -33,6 +34,7 @@ nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 nlohmann::json counts_json(const CheckCounts& c, nlohmann::json j) {
   j["cells"] = c.cells;
   j["inverted"] = c.inverted;
+  j["twisted"] = c.twisted;
   j["flat"] = c.flat;
   j["non_conforming"] = c.non_conforming;
   nlohmann::json metrics = nlohmann::json::object();

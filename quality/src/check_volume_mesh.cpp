@@ -260,6 +260,7 @@ CheckCounts count_cells(const VolumeMesh& mesh, const MeshCheckReport& r, const 
     const std::size_t c = id(i);
     ++cc.by_type[check_type_index(mesh.cell_types[c])];
     if (r.validity[c] == Validity::kInverted) ++cc.inverted;
+    if (r.validity[c] == Validity::kTwisted) ++cc.twisted;
     if (r.validity[c] == Validity::kFlat) ++cc.flat;
     if (has_flag(r.flags[c], CellCheckFlag::kNonConforming)) ++cc.non_conforming;
   }
@@ -285,7 +286,8 @@ int check_type_index(CellType t) {
 }
 
 bool MeshCheckReport::ok() const {
-  return totals.inverted == 0 && totals.flat == 0 && totals.non_conforming == 0 && overshared_faces == 0 &&
+  return totals.inverted == 0 && totals.twisted == 0 && totals.flat == 0 && totals.non_conforming == 0 &&
+         overshared_faces == 0 &&
          misoriented_faces == 0;
 }
 
@@ -319,6 +321,7 @@ MeshCheckReport check_volume_mesh(const VolumeMesh& mesh) {
       r.validity[c] = v;
       if (v == Validity::kFlat) r.flags[c] = bit(CellCheckFlag::kFlat);
       if (v == Validity::kInverted) r.flags[c] = bit(CellCheckFlag::kInverted);
+      if (v == Validity::kTwisted) r.flags[c] = bit(CellCheckFlag::kTwisted);
       const CellMetrics m = compute_cell_metrics(t, p);
       r.metrics[kJac][c] = m.scaled_jacobian;
       r.metrics[kSkew][c] = m.skewness;

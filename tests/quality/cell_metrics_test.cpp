@@ -90,7 +90,7 @@ TEST(CellMetrics, TwistedPrismHasWarpedQuadsAndTheTrilinearVolume) {
   EXPECT_NEAR(m.volume, std::sqrt(3.0) / 4.0 * (2.0 + std::cos(angle)) / 3.0, kMetricTol);
 }
 
-TEST(CellValidity, HalfTurnTwistedPrismIsInvertedAlthoughEveryCapTetIsPositive) {
+TEST(CellValidity, HalfTurnTwistedPrismIsTwistedNotInvertedSinceEveryCornerIsPositive) {
   const std::vector<Vec3> p = twisted(equilateral_prism(1.0), kPi);
   // Each cap lies on the right side of each node of the other cap ...
   EXPECT_EQ(orient3d_sign(p[0], p[2], p[1], p[3]), 1);
@@ -100,7 +100,7 @@ TEST(CellValidity, HalfTurnTwistedPrismIsInvertedAlthoughEveryCapTetIsPositive) 
   EXPECT_EQ(orient3d_sign(p[3], p[4], p[5], p[1]), 1);
   EXPECT_EQ(orient3d_sign(p[3], p[4], p[5], p[2]), 1);
   // ... but the column is folded, which the cap-edge tets see.
-  EXPECT_EQ(cell_validity(CellType::kWedge, p.data()), Validity::kInverted);
+  EXPECT_EQ(cell_validity(CellType::kWedge, p.data()), Validity::kTwisted);
   EXPECT_FALSE(prism_is_valid(p.data()));
   // The corner Jacobians are the cap tets, so the scaled Jacobian stays positive here;
   // the twist metric shows the fold.

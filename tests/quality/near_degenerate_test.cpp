@@ -1,6 +1,7 @@
 // Near-degenerate prisms whose validity only exact arithmetic decides.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -34,18 +35,20 @@ int double_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
 }
 
-// Classifies with a given sign function over the wedge's validity tets.
+// Classifies with a given sign function over the wedge's validity tets: the six corner
+// tets decide inverted (one negative) and flat (one zero), the six split tets twisted.
 template <typename Sign>
 Validity classify(const std::vector<Vec3>& p, Sign sign) {
   std::size_t n = 0;
   const std::array<int, 4>* tets = validity_tets(CellType::kWedge, &n);
-  bool flat = false;
+  int corner_min = 1, split_min = 1;
   for (std::size_t i = 0; i < n; ++i) {
     const int s = sign(p[tets[i][0]], p[tets[i][1]], p[tets[i][2]], p[tets[i][3]]);
-    if (s < 0) return Validity::kInverted;
-    flat = flat || s == 0;
+    (i < 6 ? corner_min : split_min) = std::min(i < 6 ? corner_min : split_min, s);
   }
-  return flat ? Validity::kFlat : Validity::kValid;
+  if (corner_min < 0) return Validity::kInverted;
+  if (corner_min == 0) return Validity::kFlat;
+  return split_min <= 0 ? Validity::kTwisted : Validity::kValid;
 }
 
 TEST(NearDegeneratePrism, RelativeHeightOneInTenToTheTwelveIsValidAndItsMirrorInverted) {
@@ -72,7 +75,7 @@ TEST(NearDegeneratePrism, ExactPredicatesClassifyLatticePrismsWhereDoublesFail) 
   std::uniform_int_distribution<std::int64_t> shear(-(std::int64_t{1} << 19), std::int64_t{1} << 19);
   std::uniform_int_distribution<int> nudge(-1, 1);
   int double_wrong = 0;
-  int by_class[3] = {0, 0, 0};
+  int by_class[4] = {0, 0, 0, 0};
   for (int trial = 0; trial < 3000; ++trial) {
     std::int64_t a[3], p[3], q[3];
     for (int i = 0; i < 3; ++i) a[i] = base(rng), p[i] = edge(rng), q[i] = edge(rng);

@@ -1,6 +1,15 @@
 // Validity of a linear cell in VTK node order, decided by exact orient3d on a fixed set
-// of tetrahedra spanned by the cell's nodes (its "validity tets"): inverted if any is
-// negative, flat if none is negative but one is zero, valid if all are strictly positive.
+// of tetrahedra spanned by the cell's nodes (its "validity tets"). They come in two
+// groups: the corner tets (a node with its three edge-neighbours: the sign of the
+// corner Jacobian, which VTK, Gmsh and ParaView test), listed first, then, for wedges
+// only, the split tets that only some decompositions of the cell use. The classes:
+//   inverted  some corner tet is negative (a negative corner Jacobian);
+//   flat      no corner tet is negative and one is zero (a zero corner Jacobian);
+//   twisted   every corner tet is positive, but a split tet is negative or zero: every
+//             corner looks fine, yet the quad faces are twisted so far that some split
+//             into tets folds (only wedges can be twisted; see below);
+//   valid     every validity tet is strictly positive.
+// inverted and flat together are the cells with a non-positive corner Jacobian.
 //
 // Node orders (VTK 9.1, see volume_mesh.h):
 //   tet     (0,1,2) has its right-hand normal pointing to node 3.
@@ -19,8 +28,9 @@
 //   wedge   12: the six corner tets (a node with its three edge-neighbours) are exactly
 //           the six "cap against each node of the other cap" tets. They only say that
 //           each cap lies on the correct side of the other; a top cap rotated by 180
-//           degrees about the column passes them. So the six tets (two nodes of one cap
-//           edge, two nodes of the other cap not forming the matching edge) are added:
+//           degrees about the column passes them (a twisted cell). So the six split
+//           tets (two nodes of one cap edge, two nodes of the other cap not forming the
+//           matching edge) are added:
 //           the 12 tets are all the tets of all six splits of the wedge into three
 //           tets, and a wedge passes iff every split is a valid tet mesh. This rejects
 //           twisted quad faces whose twist makes some split fold; every affine image
@@ -41,7 +51,8 @@
 
 namespace blayer {
 
-enum class Validity { kValid = 0, kFlat = 1, kInverted = 2 };
+// The values are written as the int cell array `validity`: part of the output contract.
+enum class Validity { kValid = 0, kFlat = 1, kInverted = 2, kTwisted = 3 };
 
 // corners: corner_count(type) points in VTK order.
 Validity cell_validity(CellType type, const Vec3* corners);
@@ -54,7 +65,9 @@ Validity cell_validity(CellType type, const Vec3* corners);
 bool prism_is_valid(const Vec3 corners[6]);
 
 // The validity tets of a cell type as local node indices, each positive (orient3d_sign
-// of (t[0], t[1], t[2], t[3]) > 0) in a valid cell. count receives their number.
+// of (t[0], t[1], t[2], t[3]) > 0) in a valid cell. count receives their number; the
+// first corner_tet_count(type) of them are the corner tets.
 const std::array<int, 4>* validity_tets(CellType type, std::size_t* count);
+std::size_t corner_tet_count(CellType type);
 
 }  // namespace blayer

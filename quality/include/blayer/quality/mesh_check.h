@@ -4,7 +4,10 @@
 // type; each has its own source file.
 //
 // What is checked
-//   validity     cell_validity() per cell (exact orient3d; see cell_validity.h).
+//   validity     cell_validity() per cell (exact orient3d; see cell_validity.h):
+//                inverted (a negative corner Jacobian), flat (a zero one) and twisted
+//                (every corner positive, some split tet not) are counted apart; each of
+//                them fails the check.
 //   metrics      compute_cell_metrics() per cell (see cell_metrics.h), plus the volume
 //                growth ratio of a column: volume of the cell across the top cap divided
 //                by the cell's volume.
@@ -48,6 +51,7 @@ enum class CellCheckFlag : std::uint8_t {
   kOversharedFace = 8,     // has a face shared by more than two cells
   kMisorientedFace = 16,   // shares a face with a cell on the same side of it
   kNonFinite = 32,         // a corner coordinate is NaN or infinite (also kInverted)
+  kTwisted = 64,           // validity == kTwisted
 };
 
 inline bool has_flag(std::uint8_t flags, CellCheckFlag f) {
@@ -68,7 +72,8 @@ struct MetricSummary {
 struct CheckCounts {
   std::array<std::size_t, 4> by_type{};  // indexed by check_type_index(): tet, pyramid, wedge, hex
   std::size_t cells = 0;
-  std::size_t inverted = 0;
+  std::size_t inverted = 0;              // validity kInverted: a negative corner Jacobian
+  std::size_t twisted = 0;               // validity kTwisted: corners positive, a split tet not
   std::size_t flat = 0;
   std::size_t non_conforming = 0;        // cells with kNonConforming
   std::vector<MetricSummary> metrics;    // in the order of kCheckMetricNames
@@ -106,7 +111,7 @@ struct MeshCheckReport {
   std::vector<LayerCheck> layers;
 
   double min_scaled_jacobian() const { return totals.metrics.empty() ? 0.0 : totals.metrics[0].min; }
-  // No inverted, flat, non-conforming, overshared or misoriented cell.
+  // No inverted, twisted, flat, non-conforming, overshared or misoriented cell.
   bool ok() const;
   // A cell fails when any flag is set.
   bool cell_fails(std::size_t c) const { return flags[c] != 0; }
@@ -120,18 +125,19 @@ int check_type_index(CellType t);
 // range); bad geometry is reported, never thrown.
 MeshCheckReport check_volume_mesh(const VolumeMesh& mesh);
 
-// Human-readable multi-line summary: counts by cell type, inverted/flat/non-conforming
+// Human-readable multi-line summary: counts by cell type, inverted/twisted/flat/non-conforming
 // and face counts, a table of min and percentiles per metric, then the same per layer.
 std::string format_check_report(const MeshCheckReport& report);
 
 // JSON object with keys:
 //   ok (bool), n_cells, n_points,
 //   cells {tet, pyramid, wedge, hex} (counts),
-//   inverted, flat, non_conforming (cell counts),
+//   inverted, twisted, flat, non_conforming (cell counts; inverted counts only the
+//   cells with a negative corner Jacobian, as VTK, Gmsh and ParaView do),
 //   non_conforming_faces, overshared_faces, misoriented_faces, boundary_faces,
 //   min_scaled_jacobian (number, null if no cell),
 //   metrics {<name>: {count, min, p1, p5, p50, p95, p99, max}} (null for NaN),
-//   layers [{layer, cells, inverted, flat, non_conforming, metrics {...}}] (only when
+//   layers [{layer, cells, inverted, twisted, flat, non_conforming, metrics {...}}] (only when
 //   the mesh has a `layer` array).
 nlohmann::json check_report_to_json(const MeshCheckReport& report);
 
@@ -148,9 +154,10 @@ VolumeMesh extract_bad_cells(const VolumeMesh& mesh, const MeshCheckReport& repo
 //   twist                double  worst quad-face warp angle, deg; 0 with no quads
 //   growth_ratio         double  volume of the cell across the top cap / own volume; NaN if none
 //   volume               double  signed volume
-//   validity             int     0 valid, 1 flat, 2 inverted (exact)
+//   validity             int     0 valid, 1 flat, 2 inverted, 3 twisted (exact)
 //   check_flags          int     CellCheckFlag bits (1 flat, 2 inverted, 4 non-conforming,
-//                                8 overshared face, 16 misoriented face, 32 non-finite)
+//                                8 overshared face, 16 misoriented face, 32 non-finite,
+//                                64 twisted)
 // The first overload runs check_volume_mesh(); the second reuses a report of this mesh.
 void add_quality_arrays(VolumeMesh& mesh);
 void add_quality_arrays(VolumeMesh& mesh, const MeshCheckReport& report);
