@@ -56,15 +56,7 @@ ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, s
   e.height_cap_length = cap == "mean"   ? HeightCapLength::kMeanEdge
                         : cap == "face" ? HeightCapLength::kFaceSize
                                         : HeightCapLength::kShortestEdge;
-  if (e.normal_smoothing_iterations < 0 || e.height_smoothing_rings < 0 || e.direction_repair_passes < 0)
-    throw InputError("--normal-smoothing, --height-smoothing-rings and --direction-repair-passes must be >= 0");
-  if (!(e.proximity_safety > 0.0 && e.proximity_safety <= 1.0))
-    throw InputError("--proximity-safety must be in (0, 1]");
-  if (!(e.min_visibility > 0.0 && e.min_visibility < 1.0)) throw InputError("--min-visibility must be in (0, 1)");
-  if (!(e.max_step_stretch >= 1.0)) throw InputError("--max-step-stretch must be >= 1");
-  if (!(e.min_layer_fraction > 0.0 && e.min_layer_fraction <= 1.0))
-    throw InputError("--min-layer-fraction must be in (0, 1]");
-  if (e.max_height_to_edge_ratio < 0.0) throw InputError("--max-height-to-edge must be >= 0");
+  // Every range was checked against the parameter table when the options were read.
   return e;
 }
 

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <stdexcept>
 #include <sstream>
 #include <toml++/toml.h>
 
@@ -33,21 +35,107 @@ const ParamSpec* find_spec(const std::string& name) {
   return nullptr;
 }
 
-// Parses and range-checks text for a parameter; returns the canonical text.
-std::string validate(const ParamSpec& p, const std::string& text, const std::string& where) {
+// A default taken from the library's own parameter struct, so that the table, --help and
+// the README cannot drift from what the engine does.
+std::string default_of(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+std::string default_of(int v) { return std::to_string(v); }
+std::string default_of(bool v) { return v ? "true" : "false"; }
+
+// "--name" on the command line, "key 'name'" in a case file: as the user wrote it.
+std::string option_as_written(const ParamSpec& p, const std::string& source) {
+  return source == "command line" ? "--" + p.name : "key '" + p.name + "'";
+}
+
+double parse_bound(const std::string& text, const std::string& range) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (...) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) throw std::logic_error("parameter range '" + range + "': bad bound '" + text + "'");
+  return v;
+}
+
+std::string trimmed(const std::string& s) {
+  const auto a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+
+}  // namespace
+
+ValueRange ValueRange::parse(const std::string& text, const std::string& reason) {
+  ValueRange r;
+  r.text = text;
+  r.reason = reason;
+  const std::string t = trimmed(text);
+  if (t.empty()) return r;
+  if (t[0] == '[' || t[0] == '(') {
+    const auto comma = t.find(',');
+    const char close = t.back();
+    if (comma == std::string::npos || (close != ']' && close != ')'))
+      throw std::logic_error("parameter range '" + text + "': expected [a, b], (a, b], [a, b) or (a, b)");
+    r.lo = parse_bound(trimmed(t.substr(1, comma - 1)), text);
+    r.hi = parse_bound(trimmed(t.substr(comma + 1, t.size() - comma - 2)), text);
+    r.lo_open = t[0] == '(';
+    r.hi_open = close == ')';
+    return r;
+  }
+  const bool two = t.size() > 1 && t[1] == '=';
+  const std::string op = t.substr(0, two ? 2 : 1);
+  const double v = parse_bound(trimmed(t.substr(op.size())), text);
+  if (op == ">=" || op == ">") {
+    r.lo = v;
+    r.lo_open = op == ">";
+  } else if (op == "<=" || op == "<") {
+    r.hi = v;
+    r.hi_open = op == "<";
+  } else {
+    throw std::logic_error("parameter range '" + text + "': expected >=, >, <=, < or an interval");
+  }
+  return r;
+}
+
+bool ValueRange::contains(double v) const {
+  if (lo && (lo_open ? !(v > *lo) : !(v >= *lo))) return false;
+  if (hi && (hi_open ? !(v < *hi) : !(v <= *hi))) return false;
+  return true;
+}
+
+ParamSpec ParamSpec::in(const std::string& range_text, const std::string& reason) const {
+  ParamSpec p = *this;
+  p.range = ValueRange::parse(range_text, reason);
+  return p;
+}
+
+std::string validate_parameter(const ParamSpec& p, const std::string& text, const std::string& source) {
   auto fail = [&](const std::string& why) -> std::string {
-    throw InputError(where + ": --" + p.name + ": " + why + " (got '" + text + "')");
+    throw InputError(source + ": " + option_as_written(p, source) + ": " + why + " (got '" + text + "')");
+  };
+  auto check_range = [&](double v) {
+    if (p.range.contains(v)) return;
+    fail("must be " + std::string(p.range.text[0] == '[' || p.range.text[0] == '(' ? "in " : "") + p.range.text +
+         (p.range.reason.empty() ? "" : " (" + p.range.reason + ")"));
   };
   switch (p.type) {
     case ParamType::kInt: {
       std::size_t used = 0;
-      long v = 0;
+      long long v = 0;
       try {
-        v = std::stol(text, &used);
+        v = std::stoll(text, &used);
       } catch (...) {
         fail("expected an integer");
       }
       if (used != text.size()) fail("expected an integer");
+      if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+        fail("expected an integer in [" + std::to_string(std::numeric_limits<int>::min()) + ", " +
+             std::to_string(std::numeric_limits<int>::max()) + "]");
+      check_range(static_cast<double>(v));
       return std::to_string(v);
     }
     case ParamType::kReal: {
@@ -56,9 +144,10 @@ std::string validate(const ParamSpec& p, const std::string& text, const std::str
       try {
         v = std::stod(text, &used);
       } catch (...) {
-        fail("expected a number");
+        fail("expected a finite number");
       }
       if (used != text.size() || !std::isfinite(v)) fail("expected a finite number");
+      check_range(v);
       return text;
     }
     case ParamType::kBool:
@@ -81,18 +170,6 @@ std::string validate(const ParamSpec& p, const std::string& text, const std::str
   return text;
 }
 
-// A default taken from the library's own parameter struct, so that the table, --help and
-// the README cannot drift from what the engine does.
-std::string default_of(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-std::string default_of(int v) { return std::to_string(v); }
-std::string default_of(bool v) { return v ? "true" : "false"; }
-
-}  // namespace
-
 const std::vector<ParamSpec>& parameter_table() {
   static const ExtrusionParams ex{};
   static const std::vector<ParamSpec> table = {
@@ -102,30 +179,30 @@ const std::vector<ParamSpec>& parameter_table() {
       {"side", ParamType::kString, "outward", "", "side the layers grow on: outward (external flow) or inward (internal flow: pipes, arteries); closed surfaces oriented the other way are flipped", kSurfaceCmds, "outward|inward"},
       {"allow-open", ParamType::kBool, "false", "", "accept a surface with boundary edges (holes); layers grow on the side its triangles' normals point to", kSurfaceCmds},
       {"method", ParamType::kString, "most-normal", "", "point normal method: most-normal (maximises the minimum angle to the incident triangles), most-visible (maximises min n.f), or a weighted average: angle, area, unit, inverse-area, max", kSurfaceCmds, "most-normal|most-visible|angle|area|unit|inverse-area|max"},
-      {"layers", ParamType::kInt, default_of(ex.growth.layers), "", "number of prism layers per column before any local limiting", kExtrudeCmd},
-      {"first-height", ParamType::kReal, "", "length", "height of the first (wall) layer; default: 2e-4 x the bounding-box diagonal unless two of total-thickness, last-height, growth-ratio are given", kExtrudeCmd},
-      {"growth-ratio", ParamType::kReal, "", "", "ratio of consecutive layer heights; give N and any two of first-height, last-height, total-thickness, growth-ratio; with only one height given the ratio is " + default_of(kDefaultGrowthRatio), kExtrudeCmd},
-      {"total-thickness", ParamType::kReal, "", "length", "total height of all layers", kExtrudeCmd},
-      {"last-height", ParamType::kReal, "", "length", "height of the last (outermost) layer", kExtrudeCmd},
+      ParamSpec{"layers", ParamType::kInt, default_of(ex.growth.layers), "", "number of prism layers per column before any local limiting", kExtrudeCmd}.in("[1, " + std::to_string(kMaxLayers) + "]", "more is almost certainly a typo"),
+      ParamSpec{"first-height", ParamType::kReal, "", "length", "height of the first (wall) layer; default: 2e-4 x the bounding-box diagonal unless two of total-thickness, last-height, growth-ratio are given", kExtrudeCmd}.in("> 0"),
+      ParamSpec{"growth-ratio", ParamType::kReal, "", "", "ratio of consecutive layer heights; give N and any two of first-height, last-height, total-thickness, growth-ratio; with only one height given the ratio is " + default_of(kDefaultGrowthRatio), kExtrudeCmd}.in("> 0"),
+      ParamSpec{"total-thickness", ParamType::kReal, "", "length", "total height of all layers", kExtrudeCmd}.in("> 0"),
+      ParamSpec{"last-height", ParamType::kReal, "", "length", "height of the last (outermost) layer", kExtrudeCmd}.in("> 0"),
       {"relative-heights", ParamType::kBool, "false", "", "read first-height, total-thickness and last-height as multiples of the local mean edge length at each vertex", kExtrudeCmd},
-      {"normal-smoothing", ParamType::kInt, default_of(ex.normal_smoothing_iterations), "", "smoothing passes over the step directions on every front (a smoothed direction is kept only if it sees its faces at least as well); 0: none", kExtrudeCmd},
-      {"height-smoothing-rings", ParamType::kInt, default_of(ex.height_smoothing_rings), "", "rings of neighbours over which a locally reduced height ramps back to full height, so limited spots leave no step; 0: none", kExtrudeCmd},
-      {"proximity-safety", ParamType::kReal, default_of(ex.proximity_safety), "", "a column may cover at most this fraction of the gap to another wall or front ahead of it (<= 0.5: facing fronts meet halfway)", kExtrudeCmd},
-      {"max-height-to-edge", ParamType::kReal, default_of(ex.max_height_to_edge_ratio), "", "cap on a column's total height relative to the shortest wall edge at its vertex, so small faces grow no needles; 0: no cap", kExtrudeCmd},
+      ParamSpec{"normal-smoothing", ParamType::kInt, default_of(ex.normal_smoothing_iterations), "", "smoothing passes over the step directions on every front (a smoothed direction is kept only if it sees its faces at least as well); 0: none", kExtrudeCmd}.in(">= 0"),
+      ParamSpec{"height-smoothing-rings", ParamType::kInt, default_of(ex.height_smoothing_rings), "", "rings of neighbours over which a locally reduced height ramps back to full height, so limited spots leave no step; 0: none", kExtrudeCmd}.in(">= 0"),
+      ParamSpec{"proximity-safety", ParamType::kReal, default_of(ex.proximity_safety), "", "a column may cover at most this fraction of the gap to another wall or front ahead of it (<= 0.5: facing fronts meet halfway)", kExtrudeCmd}.in("(0, 0.5]", "two fronts growing towards each other meet in the middle"),
+      ParamSpec{"max-height-to-edge", ParamType::kReal, default_of(ex.max_height_to_edge_ratio), "", "cap on a column's total height relative to the shortest wall edge at its vertex, so small faces grow no needles; 0: no cap", kExtrudeCmd}.in(">= 0", "0: no cap"),
       {"height-cap-length", ParamType::kString, "shortest", "", "the wall length max-height-to-edge multiplies: shortest (shortest edge at the vertex), mean (mean edge), face (sqrt of twice the mean incident triangle area); on stretched wing meshes longer lengths give thicker layers but lower coverage", kExtrudeCmd, "shortest|mean|face"},
-      {"min-visibility", ParamType::kReal, default_of(ex.min_visibility), "", "smallest accepted min over incident faces of n.f (0.05 = 87 deg between the step and a face normal); below it a column stops", kExtrudeCmd},
-      {"max-step-stretch", ParamType::kReal, default_of(ex.max_step_stretch), "", "cap on the step stretch 1/V that keeps a layer's height above every incident face plane", kExtrudeCmd},
-      {"min-layer-fraction", ParamType::kReal, default_of(ex.min_layer_fraction), "", "a layer cut below this fraction of its height stops its column instead (no sliver layers)", kExtrudeCmd},
-      {"direction-repair-passes", ParamType::kInt, default_of(ex.direction_repair_passes), "", "passes that turn the columns of failing cells towards a common direction before their heights are cut", kExtrudeCmd},
+      ParamSpec{"min-visibility", ParamType::kReal, default_of(ex.min_visibility), "", "smallest accepted min over incident faces of n.f (0.05 = 87 deg between the step and a face normal); below it a column stops", kExtrudeCmd}.in("(0, 1)"),
+      ParamSpec{"max-step-stretch", ParamType::kReal, default_of(ex.max_step_stretch), "", "cap on the step stretch 1/V that keeps a layer's height above every incident face plane", kExtrudeCmd}.in(">= 1"),
+      ParamSpec{"min-layer-fraction", ParamType::kReal, default_of(ex.min_layer_fraction), "", "a layer cut below this fraction of its height stops its column instead (no sliver layers)", kExtrudeCmd}.in("(0, 1]"),
+      ParamSpec{"direction-repair-passes", ParamType::kInt, default_of(ex.direction_repair_passes), "", "passes that turn the columns of failing cells towards a common direction before their heights are cut", kExtrudeCmd}.in(">= 0"),
       {"collision-check", ParamType::kBool, default_of(ex.check_collisions), "", "exact intersection check of every new front against itself, the previous front and the wall (--collision-check=false: faster, no guarantee)", kExtrudeCmd},
       {"envelope", ParamType::kPath, "", "", "also write the outer envelope of the layers as .vtp", kExtrudeCmd},
       {"report", ParamType::kPath, "", "", "also write the run report as JSON", kExtrudeCmd},
       {"fill", ParamType::kBool, "false", "", "fill the domain outside the layers (inside for --side inward) with tetrahedra (TetGen) for a hybrid mesh", kExtrudeCmd},
       {"farfield", ParamType::kPath, "", "", "closed surface bounding the domain for --fill (default: a box, see farfield-scale)", kExtrudeCmd},
-      {"farfield-scale", ParamType::kReal, "10", "", "farfield box size for --fill, as a multiple of the body's bounding box (each side)", kExtrudeCmd},
-      {"fill-growth", ParamType::kReal, "1.3", "", "size growth rate of the tetrahedra from the layers' envelope to the farfield", kExtrudeCmd},
+      ParamSpec{"farfield-scale", ParamType::kReal, "10", "", "farfield box size for --fill, as a multiple of the body's bounding box (each side)", kExtrudeCmd}.in("> 1", "the box must enclose the body"),
+      ParamSpec{"fill-growth", ParamType::kReal, "1.3", "", "size growth rate of the tetrahedra from the layers' envelope to the farfield", kExtrudeCmd}.in(">= 1"),
       {"boundary", ParamType::kPath, "", "", "with --fill: write the boundary triangles with a marker array (1 wall, 2 farfield) as .vtp", kExtrudeCmd},
-      {"threads", ParamType::kInt, "0", "", "worker threads (0: all cores)", kAll},
+      ParamSpec{"threads", ParamType::kInt, "0", "", "worker threads (0: all cores)", kAll}.in(">= 0", "0: all cores"),
       {"json", ParamType::kPath, "", "", "write the check report as JSON", kCheckCmd},
       {"bad", ParamType::kPath, "", "", "write only the failing cells with their metrics as .vtu", kCheckCmd},
   };
@@ -154,6 +231,7 @@ ParamBinder::ParamBinder(CLI::App* sub, unsigned command) : sub_(sub), command_(
     if (!(p.commands & command)) continue;
     std::string help = p.help;
     if (!p.unit.empty()) help += " [" + p.unit + "]";
+    if (!p.range.text.empty()) help += " (" + p.range.text + ")";
     if (!p.default_value.empty()) help += " (default: " + p.default_value + ")";
     if (p.name == "input") {
       sub->add_option(p.name, cli_[p.name], help);
@@ -214,7 +292,7 @@ ParamValues ParamBinder::resolve() const {
       if (p->type == ParamType::kPath && !text.empty() && std::filesystem::path(text).is_relative() &&
           k != "output")
         text = (base / text).string();
-      from_file[k] = validate(*p, text, config);
+      from_file[k] = validate_parameter(*p, text, config);
     }
   }
 
@@ -230,7 +308,7 @@ ParamValues ParamBinder::resolve() const {
       if (p.type == ParamType::kBool)
         value = flags_.at(p.name) ? "true" : "false";
       else
-        value = validate(p, cli_.at(p.name), "command line");
+        value = validate_parameter(p, cli_.at(p.name), "command line");
       set = true;
     }
     out.values_[p.name] = value;
@@ -255,6 +333,8 @@ std::string parameter_table_markdown() {
       for (char& c : type)
         if (c == '|') c = '/';
     }
+    if (!p.range.text.empty())
+      type += (p.range.text[0] == '[' || p.range.text[0] == '(' ? " in " : " ") + p.range.text;
     os << "| " << name << " | " << type << " | " << (p.default_value.empty() ? "—" : p.default_value) << " | "
        << (p.unit.empty() ? "—" : p.unit) << " | " << cmds << " | " << p.help << " |\n";
   }

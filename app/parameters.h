@@ -1,8 +1,13 @@
 // The one table of user parameters. It drives the command-line parser, the TOML case
-// files (--config), --help, and the README's parameter list (`blayer params`).
+// files (--config), --help, and the README's parameter list (`blayer params`), and it
+// owns every default and every accepted range: a value outside its range is refused
+// here, naming the option as the user wrote it ("--proximity-safety" on the command
+// line, key 'proximity-safety' in a case file), before any library code sees it. The
+// libraries' own checks (e.g. the extruder's) stay as guards against programming errors.
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +22,19 @@ enum class ParamType { kInt, kReal, kString, kBool, kPath };
 // Commands a parameter belongs to (bit mask).
 enum CommandBit : unsigned { kNormalsCmd = 1u, kExtrudeCmd = 2u, kCheckCmd = 4u };
 
+// The values a numeric parameter accepts, written as users read it: ">= 0", "> 0",
+// "<= 1", "[1, 1000]", "(0, 0.5]", "(0, 1)". Unbounded when empty.
+struct ValueRange {
+  std::string text;             // as written, shown in messages, --help and the README
+  std::optional<double> lo, hi;
+  bool lo_open = false, hi_open = false;
+  std::string reason;           // why the bound is there (may be empty), shown with it
+
+  // Parses `text`; throws std::logic_error for a malformed range (a bug in the table).
+  static ValueRange parse(const std::string& text, const std::string& reason = {});
+  bool contains(double v) const;
+};
+
 struct ParamSpec {
   std::string name;           // long option without dashes, and the TOML key
   ParamType type;
@@ -26,6 +44,10 @@ struct ParamSpec {
   unsigned commands;
   std::string choices = {};   // "a|b|c" for an enumerated string
   char short_name = 0;
+  ValueRange range = {};      // kInt and kReal only; checked for given values and defaults
+
+  // The same row with a range, so that a row reads {"name", ...}.in(">= 0"):
+  ParamSpec in(const std::string& range_text, const std::string& reason = {}) const;
 };
 
 const std::vector<ParamSpec>& parameter_table();
@@ -65,5 +87,11 @@ class ParamBinder {
 
 // The table as Markdown (for the README).
 std::string parameter_table_markdown();
+
+// Parses and checks one value for a parameter; returns its canonical text. `source` is
+// "command line" or the case file's path, and decides how the option is named in the
+// InputError: "command line: --threads: must be >= 0 (got '-3')", or
+// "case.toml: key 'threads': must be >= 0 (got '-3')".
+std::string validate_parameter(const ParamSpec& p, const std::string& text, const std::string& source);
 
 }  // namespace blayer

@@ -23,10 +23,13 @@ inline std::string slurp(const std::string& path) {
   return ss.str();
 }
 
-// args is appended to the executable verbatim (the caller quotes paths).
-inline CliRun run_blayer(const std::string& args, const std::string& scratch_dir) {
+// args is appended to the executable verbatim (the caller quotes paths). With
+// kill_after_seconds > 0 the run is killed (SIGKILL) when it takes longer, so that a
+// hang fails its test instead of stalling the suite.
+inline CliRun run_blayer(const std::string& args, const std::string& scratch_dir, int kill_after_seconds = 0) {
   const std::string out = scratch_dir + "/stdout.txt", err = scratch_dir + "/stderr.txt";
-  const std::string cmd = std::string(BLAYER_EXE) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  const std::string limit = kill_after_seconds > 0 ? "timeout -s KILL " + std::to_string(kill_after_seconds) + " " : "";
+  const std::string cmd = limit + std::string(BLAYER_EXE) + " " + args + " >" + out + " 2>" + err + " </dev/null";
   const int raw = std::system(cmd.c_str());
   CliRun r;
   if (WIFEXITED(raw)) r.status = WEXITSTATUS(raw);
