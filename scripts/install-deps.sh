@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages blayer needs to build and test. Idempotent: packages
 # already present are skipped, and nothing is fetched when all are there.
-# Usage: scripts/install-deps.sh [--extras]   (--extras: gmsh and the picture tools)
+# Usage: scripts/install-deps.sh [--extras] [--fuzz]
+#   --extras: gmsh and the picture tools
+#   --fuzz:   clang with libFuzzer and the sanitizer runtimes, and llvm-symbolizer for
+#             readable reports (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -20,9 +23,13 @@ packages=(
   libxml2-utils             # tests: xmllint checks that every .vtu/.vtp is well-formed XML
   python3-meshio            # tests: meshio (run by /usr/bin/python3) as an independent .vtu reader
 )
-if [[ "${1:-}" == "--extras" ]]; then
-  packages+=(gmsh python3-vtk9 xvfb xauth bc time)
-fi
+for option in "$@"; do
+  case "$option" in
+    --extras) packages+=(gmsh python3-vtk9 xvfb xauth bc time) ;;
+    --fuzz) packages+=(clang-14 libclang-rt-14-dev llvm-14) ;;
+    *) echo "install-deps.sh: unknown option $option" >&2; exit 1 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do
