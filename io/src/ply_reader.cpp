@@ -175,6 +175,8 @@ class PlyParser {
   void find_used_properties() {
     for (std::size_t e = 0; e < header_.elements.size(); ++e) {
       const PlyElement& el = header_.elements[e];
+      if ((el.name == "vertex" && vertex_element_ >= 0) || (el.name == "face" && face_element_ >= 0))
+        fail_at(name_, el.line, "element " + el.name + " is declared twice");
       if (el.name == "vertex") {
         vertex_element_ = static_cast<int>(e);
         for (int k = 0; k < 3; ++k) xyz_[k] = -1;

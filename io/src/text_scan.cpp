@@ -37,7 +37,7 @@ bool TextLines::next(std::string_view* line) {
   if (end == std::string_view::npos) end = text_.size();
   std::string_view l = text_.substr(pos_, end - pos_);
   if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
-  pos_ = end + 1;
+  pos_ = end < text_.size() ? end + 1 : end;  // never past the end: rest() stays valid
   ++line_;
   *line = l;
   return true;

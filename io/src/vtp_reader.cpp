@@ -1,5 +1,7 @@
 // VTK XML PolyData (.vtp), through VTK's reader (the format has too many encodings to
-// parse by hand: ascii, base64, appended raw, four compressors).
+// parse by hand: ascii, base64, appended raw, four compressors), run in a child process
+// (parse_in_child.h): VTK trusts the counts and compressed-block headers of the file,
+// and a corrupt one makes it allocate exabytes or read out of bounds.
 //
 // VTK reports problems (its XML parser's included) through the global output window,
 // which would print them before blayer's own "error:" line and does not always set the
@@ -15,8 +17,10 @@
 #include <vtkXMLPolyDataReader.h>
 
 #include <cmath>
+#include <new>
 #include <string>
 
+#include "parse_in_child.h"
 #include "surface_parsers.h"
 
 namespace blayer::detail {
@@ -76,14 +80,19 @@ class CapturedVtkErrors {
   vtkNew<CapturingOutputWindow> window_;
 };
 
-}  // namespace
-
-PolygonSoup parse_vtp(std::string_view bytes, const std::string& name) {
+PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
   CapturedVtkErrors messages;
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->ReadFromInputStringOn();
   reader->SetInputString(std::string(bytes));
-  reader->Update();
+  try {
+    reader->Update();
+  } catch (const std::bad_alloc&) {
+    // VTK allocates what the file's counts and compressed-block headers claim; a corrupt
+    // one can claim more memory than exists.
+    fail_at(name, 0, "cannot parse the .vtp file (it claims more data than memory can hold: a corrupt count or "
+                     "data block header)");
+  }
   vtkPolyData* poly = reader->GetOutput();
   if (reader->GetErrorCode() != 0 || !messages.first().empty() || !poly)
     fail_at(name, 0, "cannot parse the .vtp file" + (messages.first().empty() ? "" : " (VTK: " + messages.first() + ")"));
@@ -111,6 +120,12 @@ PolygonSoup parse_vtp(std::string_view bytes, const std::string& name) {
     soup.faces.push_back(std::move(face));
   }
   return soup;
+}
+
+}  // namespace
+
+PolygonSoup parse_vtp(std::string_view bytes, const std::string& name) {
+  return parse_in_child([&] { return parse_vtp_here(bytes, name); }, name);
 }
 
 }  // namespace blayer::detail
