@@ -1,8 +1,11 @@
+#include "blayer/extruder/extrusion_report.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <string>
-
-#include "blayer/extruder/extrude_layers.h"
 
 namespace blayer {
 
@@ -19,7 +22,99 @@ void line(std::string* out, const char* fmt, ...) {
   *out += '\n';
 }
 
+// Running min / mean / max.
+struct RangeAccumulator {
+  RangeStats s{HUGE_VAL, 0.0, -HUGE_VAL};
+  int n = 0;
+  void add(double x) {
+    s.min = std::min(s.min, x);
+    s.max = std::max(s.max, x);
+    s.mean += x;
+    ++n;
+  }
+  RangeStats result() const {
+    if (n == 0) return RangeStats{};
+    RangeStats r = s;
+    r.mean /= n;
+    return r;
+  }
+};
+
+void count_cells(const VolumeMesh& mesh, ExtrusionReport* r) {
+  for (CellType t : mesh.cell_types) {
+    switch (t) {
+      case CellType::kWedge: ++r->n_wedges; break;
+      case CellType::kPyramid: ++r->n_pyramids; break;
+      case CellType::kTet: ++r->n_tets; break;
+      case CellType::kHex: break;
+    }
+  }
+  r->n_points = static_cast<std::int64_t>(mesh.points.size());
+}
+
+// Heights above the wall (min over incident wall face planes), achieved thickness
+// fractions and stops per reason.
+void summarise_heights(const TriSurface& wall, const WallTopology& topo, const ColumnHeights& heights,
+                       const ColumnState& columns, const VolumeMesh& mesh, const std::vector<int>& point_column,
+                       ExtrusionReport* r) {
+  const int nv = topo.n_points(), nf = static_cast<int>(wall.triangles.size());
+  const std::int64_t np = static_cast<std::int64_t>(mesh.points.size());
+  std::vector<Vec3> wall_fn(nf);
+  tbb::parallel_for(0, nf, [&](int f) { wall_fn[f] = normalized(triangle_area_vector(wall, wall.triangles[f])); });
+  std::vector<std::int64_t> first_id(nv, -1);
+  for (std::int64_t p = nv; p < np; ++p)
+    if (first_id[point_column[p]] < 0) first_id[point_column[p]] = p;
+  const Csr& vtri = topo.vertex_triangles;
+  auto height_above = [&](int v, const Vec3& q) {
+    double m = HUGE_VAL;
+    for (const int* f = vtri.begin(v); f != vtri.end(v); ++f) m = std::min(m, dot(q - wall.points[v], wall_fn[*f]));
+    return m;
+  };
+  RangeAccumulator fh, th, tf;
+  for (int v = 0; v < nv; ++v) {
+    if (!topo.used[v]) continue;
+    const double total = columns.layers[v] > 0 ? height_above(v, columns.top[v]) : 0.0;
+    th.add(total);
+    tf.add(total / (heights.base[v] * r->growth.total_thickness));
+    if (columns.layers[v] > 0) fh.add(height_above(v, mesh.points[first_id[v]]));
+    if (columns.layers[v] == r->growth.layers) ++r->n_complete_columns;
+    else ++r->stopped_columns[static_cast<int>(columns.reason[v])];
+  }
+  r->first_height = fh.result();
+  r->total_thickness = th.result();
+  r->thickness_fraction = tf.result();
+}
+
+void summarise_coverage(const TriSurface& wall, const ColumnState& columns, ExtrusionReport* r) {
+  const int n = r->growth.layers;
+  double area = 0.0, area_full = 0.0;
+  int n_full = 0;
+  for (const Triangle& t : wall.triangles) {
+    const double a = 0.5 * norm(triangle_area_vector(wall, t));
+    area += a;
+    if (columns.layers[t[0]] == n && columns.layers[t[1]] == n && columns.layers[t[2]] == n) {
+      ++n_full;
+      area_full += a;
+    }
+  }
+  const int nf = static_cast<int>(wall.triangles.size());
+  r->coverage = nf > 0 ? double(n_full) / nf : 0.0;
+  r->area_coverage = area > 0.0 ? area_full / area : 0.0;
+}
+
 }  // namespace
+
+void summarise_extrusion(const TriSurface& wall, const WallTopology& topo, const ColumnHeights& heights,
+                         const ColumnState& columns, const VolumeMesh& mesh, const std::vector<int>& point_column,
+                         ExtrusionReport* r) {
+  count_cells(mesh, r);
+  summarise_heights(wall, topo, heights, columns, mesh, point_column, r);
+  summarise_coverage(wall, columns, r);
+  for (int v = 0; v < topo.n_points(); ++v) {
+    r->n_height_capped_columns += heights.capped[v];
+    r->n_gap_limited_columns += heights.gap_limited[v];
+  }
+}
 
 std::string format_extrusion_report(const ExtrusionReport& r) {
   std::string s;
@@ -44,8 +139,6 @@ std::string format_extrusion_report(const ExtrusionReport& r) {
   line(&s, "cells               %lld wedges, %lld pyramids, %lld tets; %lld points",
        static_cast<long long>(r.n_wedges), static_cast<long long>(r.n_pyramids), static_cast<long long>(r.n_tets),
        static_cast<long long>(r.n_points));
-  line(&s, "validity            %lld invalid cells (exact corner-tet check)", static_cast<long long>(r.n_invalid_cells));
-  line(&s, "min scaled jacobian %.4f", r.min_scaled_jacobian);
   line(&s, "min visibility      %.4f", r.min_visibility);
   line(&s, "time [s]            setup %.3f  normals %.3f  proximity %.3f  checks %.3f  assembly %.3f  report %.3f  "
        "total %.3f",

@@ -1,0 +1,315 @@
+// Tests of the marching stages on their own: each pins one rule of extrude_layers.h on
+// a small analytic surface, with the expected figure derived in the test.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "blayer/extruder/column_heights.h"
+#include "blayer/extruder/front_checker.h"
+#include "blayer/extruder/height_smoothing.h"
+#include "blayer/extruder/layer_assembly.h"
+#include "blayer/extruder/layer_steps.h"
+#include "blayer/extruder/proximity_rays.h"
+#include "blayer/extruder/step_directions.h"
+#include "blayer/extruder/wall_topology.h"
+#include "test_surfaces.h"
+
+namespace blayer {
+namespace {
+
+// A flat n x n grid of unit squares in z = 0, split into triangles facing +z.
+TriSurface flat_grid(int n, double spacing = 1.0) {
+  TriSurface s;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) s.points.push_back({i * spacing, j * spacing, 0.0});
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s;
+}
+
+ExtrusionParams law_params(int n, double h1, double r) {
+  ExtrusionParams p;
+  p.growth.layers = n;
+  p.growth.first_height = h1;
+  p.growth.growth_ratio = r;
+  return p;
+}
+
+TEST(WallTopology, GridTablesAreSortedAndComplete) {
+  const TriSurface s = flat_grid(2);
+  const WallTopology t = build_wall_topology(s);
+  // Centre point 4 of the 3x3 grid: 6 triangles, 6 neighbours (the diagonal split adds 2).
+  EXPECT_EQ(t.vertex_triangles.size(4), 6);
+  EXPECT_EQ(t.vertex_neighbours.size(4), 6);
+  EXPECT_TRUE(std::is_sorted(t.vertex_neighbours.begin(4), t.vertex_neighbours.end(4)));
+  EXPECT_EQ(t.vertex_triangles.size(2), 1);  // corner (2,0): one triangle
+  for (int v = 0; v < t.n_points(); ++v) EXPECT_TRUE(t.used[v]);
+}
+
+TEST(HeightSmoothing, LowSpotRampsBackByOneOverRingsPlusOnePerRing) {
+  const TriSurface s = flat_grid(8);
+  const WallTopology t = build_wall_topology(s);
+  std::vector<double> f(t.n_points(), 1.0);
+  std::vector<StopReason> why(t.n_points(), StopReason::kNone);
+  const int centre = 4 * 9 + 4;
+  f[centre] = 0.2;
+  why[centre] = StopReason::kProximity;
+  smooth_downward(t.vertex_neighbours, t.used, 3, &f, &why);
+  // Ring distance 1 -> 0.2 + 0.25, 2 -> 0.7, 3 -> 0.95, beyond: untouched.
+  EXPECT_DOUBLE_EQ(f[centre], 0.2);
+  EXPECT_DOUBLE_EQ(f[centre + 1], 0.45);
+  EXPECT_DOUBLE_EQ(f[centre + 2], 0.7);
+  EXPECT_DOUBLE_EQ(f[centre + 3], 0.95);
+  EXPECT_DOUBLE_EQ(f[centre + 4], 1.0);
+  EXPECT_EQ(why[centre + 3], StopReason::kProximity);
+  EXPECT_EQ(why[centre + 4], StopReason::kNone);
+  for (double x : f) EXPECT_LE(x, 1.0);
+}
+
+TEST(ProximityRays, RayTriangleDistanceIsExactAndMissesOutside) {
+  const Vec3 a{0, 0, 1}, b{1, 0, 1}, c{0, 1, 1};
+  EXPECT_DOUBLE_EQ(ray_triangle_distance({0.2, 0.2, 0}, {0, 0, 1}, a, b, c, 10.0), 1.0);
+  EXPECT_EQ(ray_triangle_distance({0.2, 0.2, 0}, {0, 0, 1}, a, b, c, 0.5), HUGE_VAL);   // beyond t_max
+  EXPECT_EQ(ray_triangle_distance({0.8, 0.8, 0}, {0, 0, 1}, a, b, c, 10.0), HUGE_VAL);  // outside
+  EXPECT_EQ(ray_triangle_distance({0.2, 0.2, 0}, {1, 0, 0}, a, b, c, 10.0), HUGE_VAL);  // parallel
+}
+
+// Two parallel plates facing each other across a gap: the lower one faces +z, the
+// upper one -z.
+TriSurface facing_plates(double gap) {
+  TriSurface lower = flat_grid(4);
+  TriSurface upper = flat_grid(4);
+  for (Vec3& p : upper.points) p[2] = gap;
+  for (Triangle& t : upper.triangles) std::swap(t[1], t[2]);
+  const int base = static_cast<int>(lower.points.size());
+  for (const Vec3& p : upper.points) lower.points.push_back(p);
+  for (Triangle t : upper.triangles) lower.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return lower;
+}
+
+TEST(ColumnHeights, WallGapCapScalesColumnsFacingAnotherWall) {
+  const double gap = 1.0;
+  const TriSurface wall = facing_plates(gap);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = law_params(4, 0.25, 1.0);  // T = 1 > 0.45 x gap
+  p.max_height_to_edge_ratio = 0.0;
+  p.height_smoothing_rings = 0;
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  FrontChecker checker(wall, true);
+  const ColumnHeights h = plan_column_heights(wall, topo, law, p, d, checker.wall_rays());
+  // Interior columns see the other plate at the gap: total scaled to 0.45 x gap.
+  const int centre = 2 * 5 + 2;
+  EXPECT_TRUE(h.gap_limited[centre]);
+  EXPECT_NEAR(h.scale[centre] * law.total_thickness, p.proximity_safety * gap, 1e-12);
+  EXPECT_FALSE(h.capped[centre]);
+}
+
+TEST(ColumnHeights, HeightCapIsRatioTimesShortestEdge) {
+  const TriSurface wall = flat_grid(4, 0.1);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = law_params(4, 0.25, 1.0);  // T = 1
+  p.height_smoothing_rings = 0;
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  FrontChecker checker(wall, true);
+  const ColumnHeights h = plan_column_heights(wall, topo, law, p, d, checker.wall_rays());
+  for (int v = 0; v < topo.n_points(); ++v) {
+    EXPECT_TRUE(h.capped[v]);
+    EXPECT_NEAR(h.scale[v], p.max_height_to_edge_ratio * 0.1, 1e-12) << v;
+  }
+}
+
+TEST(StepDirections, SmoothingNeverLowersVisibilityBelowTheRawDirection) {
+  const TriSurface wall = test::icosphere(2, 1.0);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams raw = law_params(1, 0.01, 1.0), smooth = raw;
+  raw.normal_smoothing_iterations = 0;
+  smooth.normal_smoothing_iterations = 3;
+  const StepDirections a = compute_step_directions(wall, topo, topo.used, raw);
+  const StepDirections b = compute_step_directions(wall, topo, topo.used, smooth);
+  for (int v = 0; v < topo.n_points(); ++v) {
+    ASSERT_TRUE(b.ok[v]);
+    EXPECT_GE(b.visibility[v], a.visibility[v]) << v;
+    EXPECT_NEAR(visibility_of(b, topo, v, b.n[v]), b.visibility[v], 1e-15);
+  }
+}
+
+TEST(StepDirections, RepairTurnsAFailingColumnTowardsItsNeighbours) {
+  const TriSurface wall = flat_grid(2);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = law_params(1, 0.1, 1.0);
+  p.normal_smoothing_iterations = 0;
+  StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  const int centre = 4;
+  d.n[centre] = normalized(Vec3{0.5, 0.0, 1.0});  // leans sideways
+  d.visibility[centre] = visibility_of(d, topo, centre, d.n[centre]);
+  std::vector<char> bad(topo.n_points(), 0), grows(topo.n_points(), 1);
+  std::vector<char> bad_tri(wall.triangles.size(), 1);
+  bad[centre] = 1;
+  const std::vector<char> turned = turn_failing_columns(wall.triangles, topo, bad, bad_tri, grows, 0.05, &d);
+  EXPECT_TRUE(turned[centre]);
+  EXPECT_EQ(std::count(turned.begin(), turned.end(), 1), 1);
+  // The new direction is the normalised sum over the incident triangles' columns, which
+  // lean less than the failing one.
+  EXPECT_GT(d.n[centre][2], normalized(Vec3{0.5, 0.0, 1.0})[2]);
+}
+
+TEST(FrontChecker, FlagsAnInvertedCellAndOnlyItsColumns) {
+  const TriSurface wall = flat_grid(2);
+  FrontChecker checker(wall, true);
+  std::vector<Vec3> top = wall.points, next = wall.points;
+  std::vector<int> layers(top.size(), 0);
+  std::vector<char> grows(top.size(), 1);
+  for (Vec3& p : next) p[2] = 0.1;
+  checker.begin_layer(0, top, layers);
+  FrontVerdict v;
+  checker.check(0, top, next, grows, &v);
+  EXPECT_FALSE(v.any_bad);
+  next[4] = {1.0, 1.0, -0.1};  // the centre column dips below the wall
+  checker.check(1, top, next, grows, &v);
+  EXPECT_TRUE(v.any_bad);
+  EXPECT_TRUE(v.bad[4]);
+  EXPECT_EQ(v.reason[4], StopReason::kQuality);
+  // Only the columns of the six triangles around the centre are flagged; corner (0,0)
+  // shares no triangle with it... except through the diagonal split: point 0's only
+  // triangles are (0,1,4) and (0,4,3), so it is flagged; point 2's is (1,2,5): not.
+  EXPECT_FALSE(v.bad[2]);
+  EXPECT_FALSE(v.bad[6]);
+}
+
+TEST(FrontChecker, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {
+  const TriSurface wall = flat_grid(3);
+  std::vector<Vec3> top = wall.points, next = wall.points;
+  std::vector<int> layers(top.size(), 0);
+  std::vector<char> grows(top.size(), 1);
+  for (Vec3& p : next) p[2] = 0.1;
+  next[5] = {1.0, 1.0, -0.05};
+  FrontChecker incremental(wall, true);
+  incremental.begin_layer(0, top, layers);
+  FrontVerdict first, second, fresh;
+  incremental.check(0, top, next, grows, &first);
+  ASSERT_TRUE(first.any_bad);
+  next[5] = {1.0, 1.0, 0.1};  // repaired
+  next[10] = {2.0, 2.0, -0.05};  // and another column broken
+  incremental.check(1, top, next, grows, &second);
+  FrontChecker full(wall, true);
+  full.begin_layer(0, top, layers);
+  full.check(0, top, next, grows, &fresh);
+  EXPECT_EQ(second.bad, fresh.bad);
+  EXPECT_EQ(second.bad_triangle, fresh.bad_triangle);
+}
+
+TEST(FrontChecker, FlagsANewFrontThatCrossesTheOtherWall) {
+  const TriSurface wall = facing_plates(0.5);
+  FrontChecker checker(wall, true);
+  std::vector<Vec3> top = wall.points, next = wall.points;
+  std::vector<int> layers(top.size(), 0);
+  std::vector<char> grows(top.size(), 0);
+  const int centre = 2 * 5 + 2;  // lower plate centre: pushed through the upper plate
+  grows[centre] = 1;
+  next[centre][2] = 0.8;
+  checker.begin_layer(0, top, layers);
+  FrontVerdict v;
+  checker.check(0, top, next, grows, &v);
+  EXPECT_TRUE(v.bad[centre]);
+  EXPECT_EQ(v.reason[centre], StopReason::kCollision);
+}
+
+TEST(LayerSteps, ProximityCutsTheStepAndStopsBelowTheMinimumFraction) {
+  const double gap = 1.0;
+  const TriSurface wall = facing_plates(gap);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = law_params(1, 0.9, 1.0);
+  p.max_height_to_edge_ratio = 0.0;
+  p.height_smoothing_rings = 0;
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  ColumnHeights h;
+  h.base.assign(topo.n_points(), 1.0);
+  h.scale.assign(topo.n_points(), 1.0);
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  LayerSteps s = plan_layer_steps(0, law, h, d, c, p);
+  FrontChecker checker(wall, true);
+  checker.begin_layer(0, c.top, c.layers);
+  limit_steps_by_proximity(checker.front_rays(), topo, d, p, &c, &s);
+  const int centre = 2 * 5 + 2;
+  EXPECT_NEAR(s.phi[centre] * s.step[centre], p.proximity_safety * gap, 1e-12);
+  EXPECT_FALSE(c.stopped[centre]);
+  p.min_layer_fraction = 0.6;  // 0.45 / 0.9 = 0.5 of the layer: below 0.6, stops
+  ColumnState c2 = ColumnState::on_wall(wall.points, topo.used);
+  LayerSteps s2 = plan_layer_steps(0, law, h, d, c2, p);
+  limit_steps_by_proximity(checker.front_rays(), topo, d, p, &c2, &s2);
+  EXPECT_TRUE(c2.stopped[centre]);
+  EXPECT_EQ(c2.reason[centre], StopReason::kProximity);
+}
+
+TEST(LayerSteps, SettlingStopsAColumnWhoseCellsCannotBeMadeValid) {
+  const TriSurface wall = flat_grid(4);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = law_params(1, 0.1, 1.0);
+  p.normal_smoothing_iterations = 0;
+  p.direction_repair_passes = 0;
+  p.height_smoothing_rings = 0;
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  const int centre = 2 * 5 + 2;
+  d.n[centre] = Vec3{0.0, 0.0, -1.0};  // the centre column points into the wall
+  d.visibility[centre] = 1.0;          // (pretending it were visible)
+  ColumnHeights h;
+  h.base.assign(topo.n_points(), 1.0);
+  h.scale.assign(topo.n_points(), 1.0);
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  LayerSteps s = plan_layer_steps(0, law, h, d, c, p);
+  FrontChecker checker(wall, true);
+  checker.begin_layer(0, c.top, c.layers);
+  std::vector<Vec3> next(wall.points.size());
+  const std::vector<char> grows = settle_layer(wall.triangles, topo, p, &checker, &d, &s, &c, &next);
+  EXPECT_FALSE(grows[centre]);
+  EXPECT_TRUE(c.stopped[centre]);
+  EXPECT_EQ(c.reason[centre], StopReason::kQuality);
+  EXPECT_EQ(next[centre], wall.points[centre]);
+  // Halving from 1 reaches min_layer_fraction 0.25 after two failures: phi 0.25 still
+  // fails, 0.125 stops.
+  EXPECT_DOUBLE_EQ(s.phi[centre], 0.125);
+  // Every column of a failing cell is cut alike, so the centre's neighbours stop with
+  // it; columns sharing no triangle with the centre keep the full step.
+  std::vector<char> near(topo.n_points(), 0);
+  near[centre] = 1;
+  for (const int* u = topo.vertex_neighbours.begin(centre); u != topo.vertex_neighbours.end(centre); ++u) near[*u] = 1;
+  for (int v = 0; v < topo.n_points(); ++v) {
+    if (near[v]) continue;
+    EXPECT_TRUE(grows[v]) << v;
+    EXPECT_DOUBLE_EQ(s.phi[v], 1.0) << v;
+  }
+}
+
+TEST(LayerAssembly, CellTypesFollowHowManyColumnsGrow) {
+  const TriSurface wall = flat_grid(1);  // 4 points, 2 triangles (0,1,3) and (0,3,2)
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = law_params(1, 0.1, 1.0);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  LayerAssembler a(wall, d);
+  std::vector<Vec3> next = wall.points;
+  for (Vec3& q : next) q[2] = 0.1;
+  a.commit_layer(0, {1, 1, 0, 1}, next, d, &c);  // (0,1,3) wedge; (0,3,2) pyramid
+  EXPECT_EQ(c.layers, (std::vector<int>{1, 1, 0, 1}));
+  EXPECT_EQ(c.top_id[3], 6);
+  const VolumeMesh m = a.finish(c);
+  ASSERT_EQ(m.n_cells(), 2u);
+  EXPECT_EQ(m.cell_types[0], CellType::kWedge);
+  EXPECT_EQ(m.cell_types[1], CellType::kPyramid);
+  EXPECT_EQ(m.points.size(), 7u);
+  EXPECT_EQ(a.columns_per_layer(), std::vector<int>{3});
+  EXPECT_NE(m.find_point_array("column_height"), nullptr);
+  EXPECT_DOUBLE_EQ(m.find_point_array("column_height")->values[4], 0.1);  // point 4 = top of column 0
+}
+
+}  // namespace
+}  // namespace blayer
