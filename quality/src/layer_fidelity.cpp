@@ -1,0 +1,212 @@
+#include "blayer/quality/layer_fidelity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "nearest_triangle.h"
+
+namespace blayer {
+
+namespace {
+
+// Column edges as an adjacency list: for each mesh point the points it shares a column
+// edge with, each neighbour once.
+std::vector<std::vector<std::int64_t>> column_neighbours(const VolumeMesh& mesh) {
+  static constexpr int kWedgeEdges[3][2] = {{0, 3}, {1, 4}, {2, 5}};
+  static constexpr int kHexEdges[4][2] = {{0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  static constexpr int kPyramidEdges[2][2] = {{0, 1}, {2, 3}};
+  std::vector<std::vector<std::int64_t>> nb(mesh.points.size());
+  auto link = [&](std::int64_t a, std::int64_t b) {
+    if (a == b) return;
+    if (std::find(nb[a].begin(), nb[a].end(), b) == nb[a].end()) nb[a].push_back(b);
+    if (std::find(nb[b].begin(), nb[b].end(), a) == nb[b].end()) nb[b].push_back(a);
+  };
+  for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
+    const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
+    if (mesh.cell_types[c] == CellType::kWedge) {
+      for (const auto& e : kWedgeEdges) link(n[e[0]], n[e[1]]);
+    } else if (mesh.cell_types[c] == CellType::kHex) {
+      for (const auto& e : kHexEdges) link(n[e[0]], n[e[1]]);
+    } else if (mesh.cell_types[c] == CellType::kPyramid) {
+      for (const auto& e : kPyramidEdges) link(n[e[0]], n[e[1]]);
+    }
+  }
+  return nb;
+}
+
+// The column of wall point w: the points after w, in order.
+std::vector<std::int64_t> follow_column(std::int64_t w, const std::vector<std::vector<std::int64_t>>& nb,
+                                        std::size_t n_wall, bool* branching) {
+  std::vector<std::int64_t> path;
+  std::int64_t prev = -1, cur = w;
+  *branching = false;
+  // A column cannot be longer than the mesh has points; the bound also stops a cycle.
+  while (path.size() < nb.size()) {
+    std::int64_t next = -1;
+    int onward = 0;
+    for (std::int64_t q : nb[cur]) {
+      if (q == prev || static_cast<std::size_t>(q) < n_wall) continue;
+      if (std::find(path.begin(), path.end(), q) != path.end()) continue;
+      ++onward;
+      next = q;
+    }
+    if (onward == 0) break;
+    if (onward > 1) {
+      *branching = true;
+      break;
+    }
+    path.push_back(next);
+    prev = cur;
+    cur = next;
+  }
+  return path;
+}
+
+double percentile(const std::vector<double>& sorted, double p) {
+  const double pos = p / 100.0 * static_cast<double>(sorted.size() - 1);
+  const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  const double t = pos - static_cast<double>(lo);
+  return sorted[lo] + t * (sorted[hi] - sorted[lo]);
+}
+
+double share(int count, int total) { return total > 0 ? static_cast<double>(count) / total : 0.0; }
+
+nlohmann::json distribution_json(const FidelityDistribution& d) {
+  return {{"count", d.count}, {"min", d.min}, {"p1", d.p1},   {"p5", d.p5},
+          {"p50", d.p50},     {"p95", d.p95}, {"p99", d.p99}, {"max", d.max}};
+}
+
+}  // namespace
+
+FidelityDistribution describe_distribution(std::vector<double> values) {
+  FidelityDistribution d;
+  if (values.empty()) return d;
+  std::sort(values.begin(), values.end());
+  d.count = static_cast<int>(values.size());
+  d.min = values.front();
+  d.max = values.back();
+  d.p1 = percentile(values, 1);
+  d.p5 = percentile(values, 5);
+  d.p50 = percentile(values, 50);
+  d.p95 = percentile(values, 95);
+  d.p99 = percentile(values, 99);
+  return d;
+}
+
+LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& wall,
+                                     const LayerFidelityTargets& targets) {
+  if (!(targets.first_height > 0.0) || !(targets.total_thickness > 0.0) || targets.layers <= 0)
+    throw std::invalid_argument("layer fidelity: first height, total thickness and layers must be positive");
+  const std::size_t n_wall = wall.points.size();
+  if (n_wall > mesh.points.size())
+    throw std::invalid_argument("layer fidelity: the wall has " + std::to_string(n_wall) + " points, the mesh only " +
+                                std::to_string(mesh.points.size()));
+  // Unit normal and a point of every wall triangle's plane, and the triangles at each point.
+  std::vector<Vec3> unit_normal(wall.triangles.size());
+  std::vector<std::vector<int>> incident(n_wall);
+  for (std::size_t t = 0; t < wall.triangles.size(); ++t) {
+    unit_normal[t] = normalized(triangle_area_vector(wall, wall.triangles[t]));
+    for (int v : wall.triangles[t]) {
+      if (v < 0 || static_cast<std::size_t>(v) >= n_wall)
+        throw std::invalid_argument("layer fidelity: wall triangle " + std::to_string(t) + " uses point " +
+                                    std::to_string(v) + ", not a wall point");
+      incident[v].push_back(static_cast<int>(t));
+    }
+  }
+  auto height_planes = [&](std::size_t w, const Vec3& p) {
+    double h = std::numeric_limits<double>::infinity();
+    for (int t : incident[w]) h = std::min(h, dot(p - wall.points[wall.triangles[t][0]], unit_normal[t]));
+    return h;
+  };
+
+  const auto nb = column_neighbours(mesh);
+  const detail::NearestTriangleTree tree(wall);
+  LayerFidelity f;
+  f.columns.resize(n_wall);
+  std::vector<double> first_planes, first_distance, top_planes, top_distance;
+  int within1_planes = 0, within1_distance = 0, within10_planes = 0, within10_distance = 0;
+  int reach_planes = 0, reach_distance = 0;
+  const double h1 = targets.first_height, total = targets.total_thickness;
+  for (std::size_t w = 0; w < n_wall; ++w) {
+    ColumnFidelity& c = f.columns[w];
+    if (incident[w].empty()) {
+      c.layers = -1;
+      continue;
+    }
+    ++f.n_columns;
+    bool branching = false;
+    const std::vector<std::int64_t> path = follow_column(static_cast<std::int64_t>(w), nb, n_wall, &branching);
+    f.n_branching += branching ? 1 : 0;
+    c.layers = static_cast<int>(path.size());
+    c.top_point = path.empty() ? static_cast<std::int64_t>(w) : path.back();
+    if (!path.empty()) {
+      const Vec3& first = mesh.points[path.front()];
+      const Vec3& top = mesh.points[path.back()];
+      c.first_height_planes = height_planes(w, first);
+      c.first_distance = tree.nearest(first).distance;
+      c.top_height_planes = height_planes(w, top);
+      c.top_distance = tree.nearest(top).distance;
+      ++f.n_grown;
+      const double rp = c.first_height_planes / h1, rd = c.first_distance / h1;
+      first_planes.push_back(rp);
+      first_distance.push_back(rd);
+      within1_planes += std::fabs(rp - 1.0) <= 0.01;
+      within1_distance += std::fabs(rd - 1.0) <= 0.01;
+      within10_planes += std::fabs(rp - 1.0) <= 0.1;
+      within10_distance += std::fabs(rd - 1.0) <= 0.1;
+    }
+    if (c.layers >= targets.layers) ++f.n_complete;
+    top_planes.push_back(c.top_height_planes / total);
+    top_distance.push_back(c.top_distance / total);
+    reach_planes += top_planes.back() >= 0.9;
+    reach_distance += top_distance.back() >= 0.9;
+  }
+  f.first_over_h1_planes = describe_distribution(first_planes);
+  f.first_over_h1_distance = describe_distribution(first_distance);
+  f.top_over_T_planes = describe_distribution(top_planes);
+  f.top_over_T_distance = describe_distribution(top_distance);
+  f.first_within_1pct_planes = share(within1_planes, f.n_grown);
+  f.first_within_1pct_distance = share(within1_distance, f.n_grown);
+  f.first_within_10pct_planes = share(within10_planes, f.n_grown);
+  f.first_within_10pct_distance = share(within10_distance, f.n_grown);
+  f.top_ge_90pct_planes = share(reach_planes, f.n_columns);
+  f.top_ge_90pct_distance = share(reach_distance, f.n_columns);
+  f.complete_share = share(f.n_complete, f.n_columns);
+  double area = 0.0, covered = 0.0;
+  for (const Triangle& t : wall.triangles) {
+    const double a = 0.5 * norm(triangle_area_vector(wall, t));
+    area += a;
+    bool complete = true;
+    for (int v : t) complete &= f.columns[v].layers >= targets.layers;
+    if (complete) covered += a;
+  }
+  f.area_coverage = area > 0.0 ? covered / area : 0.0;
+  return f;
+}
+
+nlohmann::json layer_fidelity_to_json(const LayerFidelity& f) {
+  nlohmann::json j;
+  j["columns"] = f.n_columns;
+  j["grown"] = f.n_grown;
+  j["complete"] = f.n_complete;
+  j["branching"] = f.n_branching;
+  j["first_over_h1"] = {{"planes", distribution_json(f.first_over_h1_planes)},
+                        {"distance", distribution_json(f.first_over_h1_distance)}};
+  j["top_over_T"] = {{"planes", distribution_json(f.top_over_T_planes)},
+                     {"distance", distribution_json(f.top_over_T_distance)}};
+  j["first_within_1pct_planes"] = f.first_within_1pct_planes;
+  j["first_within_1pct_distance"] = f.first_within_1pct_distance;
+  j["first_within_10pct_planes"] = f.first_within_10pct_planes;
+  j["first_within_10pct_distance"] = f.first_within_10pct_distance;
+  j["top_ge_90pct_planes"] = f.top_ge_90pct_planes;
+  j["top_ge_90pct_distance"] = f.top_ge_90pct_distance;
+  j["complete_share"] = f.complete_share;
+  j["area_coverage"] = f.area_coverage;
+  return j;
+}
+
+}  // namespace blayer

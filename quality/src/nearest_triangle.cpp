@@ -1,0 +1,156 @@
+#include "nearest_triangle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace blayer {
+namespace detail {
+
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  // The plane of the triangle is split into seven regions (three vertices, three edges,
+  // the interior) by the signs of dot products with the edge vectors; each region has its
+  // own closed-form nearest point.
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double sum = va + vb + vc;
+  if (!(sum > 0.0)) {
+    // A collapsed triangle that slipped through the region tests (all three areas
+    // zero): its nearest point lies on one of its edges.
+    auto on_segment = [&](const Vec3& s, const Vec3& t) {
+      const Vec3 st = t - s;
+      const double l2 = norm2(st);
+      const double u = l2 > 0.0 ? std::clamp(dot(p - s, st) / l2, 0.0, 1.0) : 0.0;
+      return s + u * st;
+    };
+    Vec3 best = on_segment(a, b);
+    for (const Vec3& q : {on_segment(b, c), on_segment(c, a)})
+      if (norm2(q - p) < norm2(best - p)) best = q;
+    return best;
+  }
+  return a + (vb / sum) * ab + (vc / sum) * ac;
+}
+
+namespace {
+
+double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double e = std::max({lo[k] - p[k], 0.0, p[k] - hi[k]});
+    d2 += e * e;
+  }
+  return d2;
+}
+
+}  // namespace
+
+NearestTriangleTree::NearestTriangleTree(const TriSurface& surface) : surface_(surface) {
+  const int n = static_cast<int>(surface.triangles.size());
+  order_.resize(n);
+  centroid_.resize(n);
+  for (int t = 0; t < n; ++t) {
+    order_[t] = t;
+    const Triangle& tri = surface.triangles[t];
+    centroid_[t] = (surface.points[tri[0]] + surface.points[tri[1]] + surface.points[tri[2]]) / 3.0;
+  }
+  nodes_.reserve(n > 0 ? 2 * (n / kLeafSize + 1) : 0);
+  if (n > 0) build(0, n);
+}
+
+int NearestTriangleTree::build(int begin, int end) {
+  Node node;
+  const double inf = std::numeric_limits<double>::infinity();
+  node.lo = {inf, inf, inf};
+  node.hi = {-inf, -inf, -inf};
+  Vec3 clo = node.lo, chi = node.hi;
+  for (int i = begin; i < end; ++i) {
+    const Triangle& tri = surface_.triangles[order_[i]];
+    for (int v : tri)
+      for (int k = 0; k < 3; ++k) {
+        node.lo[k] = std::min(node.lo[k], surface_.points[v][k]);
+        node.hi[k] = std::max(node.hi[k], surface_.points[v][k]);
+      }
+    for (int k = 0; k < 3; ++k) {
+      clo[k] = std::min(clo[k], centroid_[order_[i]][k]);
+      chi[k] = std::max(chi[k], centroid_[order_[i]][k]);
+    }
+  }
+  node.begin = begin;
+  node.end = end;
+  const int id = static_cast<int>(nodes_.size());
+  nodes_.push_back(node);
+  if (end - begin <= kLeafSize) return id;
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
+  const int mid = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](int x, int y) { return centroid_[x][axis] < centroid_[y][axis]; });
+  const int left = build(begin, mid);
+  const int right = build(mid, end);
+  nodes_[id].left = left;
+  nodes_[id].right = right;
+  return id;
+}
+
+NearestTriangleTree::Hit NearestTriangleTree::nearest(const Vec3& p) const {
+  Hit hit;
+  if (nodes_.empty()) {
+    hit.distance = std::numeric_limits<double>::infinity();
+    return hit;
+  }
+  double best2 = std::numeric_limits<double>::infinity();
+  // Depth-first, nearer child first; a box no nearer than the best so far cannot hold a
+  // nearer triangle, and ties (equal squared distance) keep the first triangle found.
+  std::vector<std::pair<double, int>> stack;
+  stack.emplace_back(box_distance2(p, nodes_[0].lo, nodes_[0].hi), 0);
+  while (!stack.empty()) {
+    const auto [d2, id] = stack.back();
+    stack.pop_back();
+    if (d2 >= best2) continue;
+    const Node& node = nodes_[id];
+    if (node.left < 0) {
+      for (int i = node.begin; i < node.end; ++i) {
+        const Triangle& tri = surface_.triangles[order_[i]];
+        const Vec3 q = closest_point_on_triangle(p, surface_.points[tri[0]], surface_.points[tri[1]],
+                                                 surface_.points[tri[2]]);
+        const double e2 = norm2(q - p);
+        if (e2 < best2) {
+          best2 = e2;
+          hit.triangle = order_[i];
+          hit.point = q;
+        }
+      }
+      continue;
+    }
+    const double dl = box_distance2(p, nodes_[node.left].lo, nodes_[node.left].hi);
+    const double dr = box_distance2(p, nodes_[node.right].lo, nodes_[node.right].hi);
+    // Pushed farther first, so the nearer child is popped next.
+    if (dl <= dr) {
+      stack.emplace_back(dr, node.right);
+      stack.emplace_back(dl, node.left);
+    } else {
+      stack.emplace_back(dl, node.left);
+      stack.emplace_back(dr, node.right);
+    }
+  }
+  hit.distance = std::sqrt(best2);
+  return hit;
+}
+
+}  // namespace detail
+}  // namespace blayer

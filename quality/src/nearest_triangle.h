@@ -1,0 +1,49 @@
+// Nearest point on a triangle surface: exact Euclidean distance from a query point to
+// the closest point of any triangle, through a bounding-volume hierarchy. Private to the
+// quality module (layer_fidelity.cpp); the tests reach it through its own header.
+#pragma once
+
+#include <vector>
+
+#include "blayer/core/surface.h"
+
+namespace blayer {
+namespace detail {
+
+// Closest point of the triangle (a, b, c) to p, by the Voronoi region of p among the
+// triangle's vertices, edges and interior. Exact up to rounding for any triangle,
+// degenerate ones included (they fall into an edge or vertex region).
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+// Axis-aligned box tree over the triangles of a surface (copied), built once (median split along
+// the longest axis of the centroids, leaves of at most kLeafSize triangles). A query
+// visits boxes nearest first and skips every box farther than the best distance so far,
+// so the answer is the same as the brute-force minimum over all triangles.
+class NearestTriangleTree {
+ public:
+  explicit NearestTriangleTree(const TriSurface& surface);
+
+  struct Hit {
+    double distance = 0.0;  // Euclidean distance to the nearest point
+    int triangle = -1;      // a triangle holding that point (-1 for an empty surface)
+    Vec3 point{0.0, 0.0, 0.0};
+  };
+  Hit nearest(const Vec3& p) const;
+
+ private:
+  static constexpr int kLeafSize = 4;
+  struct Node {
+    Vec3 lo, hi;
+    int begin = 0, end = 0;  // range of order_ for leaves
+    int left = -1, right = -1;
+  };
+  int build(int begin, int end);
+
+  TriSurface surface_;  // a copy: the tree outlives no caller's surface by accident
+  std::vector<int> order_;
+  std::vector<Vec3> centroid_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace detail
+}  // namespace blayer
