@@ -50,25 +50,21 @@ ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, s
   e.normal_smoothing_iterations = p.get_int("normal-smoothing");
   e.height_smoothing_rings = p.get_int("height-smoothing-rings");
   e.proximity_safety = p.get_real("proximity-safety");
-  e.max_height_to_edge_ratio = p.get_real("max-height-to-edge");
+  e.max_layer_aspect = p.get_real("max-layer-aspect");
   e.min_visibility = p.get_real("min-visibility");
   e.max_step_stretch = p.get_real("max-step-stretch");
-  e.min_layer_fraction = p.get_real("min-layer-fraction");
   e.check_collisions = p.get_bool("collision-check");
   e.direction_repair_passes = p.get_int("direction-repair-passes");
-  const std::string cap = p.get_string("height-cap-length");
-  e.height_cap_length = cap == "mean"   ? HeightCapLength::kMeanEdge
-                        : cap == "face" ? HeightCapLength::kFaceSize
-                                        : HeightCapLength::kShortestEdge;
+  e.column_directions = p.get_string("column-directions") == "recomputed" ? ColumnDirections::kRecomputed
+                                                                         : ColumnDirections::kKept;
+  e.limit_policy = p.get_string("limit") == "terminate" ? LimitPolicy::kTerminate : LimitPolicy::kCompress;
   if (e.normal_smoothing_iterations < 0 || e.height_smoothing_rings < 0 || e.direction_repair_passes < 0)
     throw InputError("--normal-smoothing, --height-smoothing-rings and --direction-repair-passes must be >= 0");
   if (!(e.proximity_safety > 0.0 && e.proximity_safety <= 1.0))
     throw InputError("--proximity-safety must be in (0, 1]");
   if (!(e.min_visibility > 0.0 && e.min_visibility < 1.0)) throw InputError("--min-visibility must be in (0, 1)");
   if (!(e.max_step_stretch >= 1.0)) throw InputError("--max-step-stretch must be >= 1");
-  if (!(e.min_layer_fraction > 0.0 && e.min_layer_fraction <= 1.0))
-    throw InputError("--min-layer-fraction must be in (0, 1]");
-  if (e.max_height_to_edge_ratio < 0.0) throw InputError("--max-height-to-edge must be >= 0");
+  if (e.max_layer_aspect < 0.0) throw InputError("--max-layer-aspect must be >= 0");
   return e;
 }
 
@@ -107,8 +103,6 @@ void append_fill(VolumeMesh& mesh, const std::vector<std::int64_t>& envelope_ids
   mesh.cell_data.push_back(std::move(region));
 }
 
-nlohmann::json range_json(const RangeStats& r) { return {{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; }
-
 nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, const MeshCheckReport& check,
                            std::size_t n_layer_cells, const FillStats* fill, double seconds) {
   nlohmann::json j;
@@ -119,30 +113,10 @@ nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, 
   for (std::size_t c = 0; c < volume.size(); ++c) (c < n_layer_cells ? layers_volume : fill_volume) += volume[c];
   j["volume"] = {{"layers", layers_volume}, {"fill", fill_volume}};
   j["config"] = params.effective();
-  j["growth_law"] = {{"layers", r.growth.layers},
-                     {"first_height", r.growth.first_height},
-                     {"last_height", r.growth.last_height},
-                     {"total_thickness", r.growth.total_thickness},
-                     {"growth_ratio", r.growth.growth_ratio},
-                     {"relative", r.growth.relative}};
-  j["wall"] = {{"points", r.n_wall_points}, {"triangles", r.n_wall_triangles}};
-  j["achieved"] = {{"first_height", range_json(r.first_height)},
-                   {"total_thickness", range_json(r.total_thickness)},
-                   {"thickness_fraction", range_json(r.thickness_fraction)}};
-  j["coverage"] = r.coverage;
-  j["area_coverage"] = r.area_coverage;
-  nlohmann::json stopped;
-  for (int k = 1; k < kStopReasonCount; ++k) stopped[stop_reason_name(static_cast<StopReason>(k))] = r.stopped_columns[k];
-  j["columns"] = {{"complete", r.n_complete_columns},
-                  {"stopped", stopped},
-                  {"height_capped", r.n_height_capped_columns},
-                  {"gap_limited", r.n_gap_limited_columns},
-                  {"per_layer", r.columns_per_layer}};
-  j["min_visibility"] = r.min_visibility;
+  const nlohmann::json extrusion = extrusion_report_to_json(r);
+  for (auto it = extrusion.begin(); it != extrusion.end(); ++it) j[it.key()] = it.value();
   j["check"] = check_report_to_json(check);
-  j["time_seconds"] = {{"setup", r.t_setup},       {"normals", r.t_normals}, {"proximity", r.t_proximity},
-                       {"checks", r.t_checks},     {"assembly", r.t_assembly}, {"report", r.t_report},
-                       {"extrusion", r.t_total},   {"total", seconds}};
+  j["time_seconds"]["total"] = seconds;
   if (fill)
     j["fill"] = {{"tets", fill->n_tets},
                  {"steiner_points", fill->n_steiner_points},
@@ -191,6 +165,8 @@ int run_extrude_command(const ParamValues& params) {
   ExtrusionResult result = extrude_layers(prepared.surface, ep, progress_bar());
   const std::size_t n_layer_cells = result.mesh.n_cells();
   std::printf("%s", format_extrusion_report(result.report).c_str());
+  const std::string thin = thickness_warning(result.report);
+  if (!thin.empty()) std::printf("warning: %s\n", thin.c_str());
 
   std::unique_ptr<FillResult> filled;
   std::unique_ptr<TriSurface> farfield_surface;
@@ -269,6 +245,14 @@ int run_extrude_command(const ParamValues& params) {
   if (!boundary.empty()) std::printf(", %s", boundary.c_str());
   if (!report.empty()) std::printf(", %s", report.c_str());
   std::printf(" (%.2f s in all)\n", total.seconds());
+  const double required = params.get_real("require-thickness");
+  const double reached = 1.0 - result.report.thin.total_columns;
+  if (required > 0.0 && reached < required) {
+    std::printf("error: %.2f %% of the columns reach 90 %% of the thickness, fewer than --require-thickness %.4g "
+                "asks (the mesh is written)\n",
+                100.0 * reached, required);
+    return kExitThicknessNotReached;
+  }
   return 0;
 }
 

@@ -10,51 +10,29 @@ namespace blayer {
 
 namespace {
 
-// The wall length the height cap multiplies at v.
-double cap_length(const TriSurface& wall, const WallTopology& topo, const EdgeLengths& edges, HeightCapLength which,
-                  int v) {
-  switch (which) {
-    case HeightCapLength::kShortestEdge: return edges.shortest[v];
-    case HeightCapLength::kMeanEdge: return edges.mean[v];
-    case HeightCapLength::kFaceSize: {
-      const Csr& vtri = topo.vertex_triangles;
-      double area = 0.0;
-      for (const int* f = vtri.begin(v); f != vtri.end(v); ++f)
-        area += 0.5 * norm(triangle_area_vector(wall, wall.triangles[*f]));
-      const int n = vtri.size(v);
-      return n > 0 ? std::sqrt(2.0 * area / n) : 0.0;
-    }
-  }
-  return edges.shortest[v];
-}
-
-void apply_height_cap(const TriSurface& wall, const WallTopology& topo, const ResolvedGrowthLaw& law,
-                      const ExtrusionParams& p, ColumnHeights* h) {
-  if (!(p.max_height_to_edge_ratio > 0.0)) return;
-  const EdgeLengths edges = wall_edge_lengths(wall, topo);
-  parallel_vertices(topo.n_points(), [&](int v) {
-    const double target = h->base[v] * law.total_thickness;
-    const double cap = p.max_height_to_edge_ratio * cap_length(wall, topo, edges, p.height_cap_length, v);
-    if (topo.used[v] && target > cap) {
-      h->scale[v] = cap / target;
-      h->capped[v] = 1;
-    }
-  });
-}
-
-void apply_wall_gap_cap(const WallTopology& topo, const ResolvedGrowthLaw& law, const ExtrusionParams& p,
-                        const StepDirections& d, const ProximityRays& rays, const std::vector<Vec3>& wall_points,
-                        ColumnHeights* h) {
+// Fraction of each column's target total that the wall gap allows (1: no limit).
+std::vector<double> wall_gap_fractions(const WallTopology& topo, const ColumnPlan& plan, const ExtrusionParams& p,
+                                       const StepDirections& d, const ProximityRays& rays,
+                                       const std::vector<Vec3>& wall_points) {
+  std::vector<double> fraction(topo.n_points(), 1.0);
   parallel_vertices(topo.n_points(), [&](int v) {
     if (!d.ok[v]) return;
-    const double extent =
-        h->base[v] * h->scale[v] * law.total_thickness / std::max(d.visibility[v], 1.0 / p.max_step_stretch);
-    const double gap = rays.first_hit(v, wall_points[v], d.n[v], extent / p.proximity_safety);
-    if (gap < HUGE_VAL && extent > p.proximity_safety * gap) {
-      h->scale[v] *= p.proximity_safety * gap / extent;
-      h->gap_limited[v] = 1;
-    }
+    const double vis = std::max(d.visibility[v], 1.0 / p.max_step_stretch);
+    const double path = plan.target_total[v] / vis;
+    const double gap = rays.first_hit(v, wall_points[v], d.n[v], path / p.proximity_safety);
+    if (gap < HUGE_VAL) fraction[v] = std::min(1.0, p.proximity_safety * gap * vis / plan.target_total[v]);
   });
+  return fraction;
+}
+
+void end_at_aspect_ratio(const EdgeLengths& edges, const ExtrusionParams& p, ColumnPlan* plan) {
+  if (!(p.max_layer_aspect > 0.0)) return;
+  for (int v = 0; v < static_cast<int>(edges.mean.size()); ++v)
+    for (int k = 0; k < plan->planned_layers[v]; ++k)
+      if (plan->height(v, k) > p.max_layer_aspect * edges.mean[v]) {
+        end_column_after(plan, v, k, StopReason::kAspectRatio);
+        break;
+      }
 }
 
 }  // namespace
@@ -80,21 +58,25 @@ EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo) 
   return e;
 }
 
-ColumnHeights plan_column_heights(const TriSurface& wall, const WallTopology& topo, const ResolvedGrowthLaw& law,
-                                  const ExtrusionParams& p, const StepDirections& wall_directions,
-                                  const ProximityRays& wall_rays) {
+ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& topo, const ResolvedGrowthLaw& law,
+                               const ExtrusionParams& p, const StepDirections& wall_directions,
+                               const ProximityRays& wall_rays) {
   const int nv = topo.n_points();
-  ColumnHeights h;
-  h.base.assign(nv, 1.0);
-  if (law.relative) h.base = wall_edge_lengths(wall, topo).mean;
-  h.scale.assign(nv, 1.0);
-  h.capped.assign(nv, 0);
-  h.gap_limited.assign(nv, 0);
-  apply_height_cap(wall, topo, law, p, &h);
-  apply_wall_gap_cap(topo, law, p, wall_directions, wall_rays, wall.points, &h);
-  std::vector<StopReason> reason(nv, StopReason::kNone);
-  smooth_downward(topo.vertex_neighbours, topo.used, p.height_smoothing_rings, &h.scale, &reason);
-  return h;
+  const EdgeLengths edges = wall_edge_lengths(wall, topo);
+  ColumnPlan plan = plan_columns(law, law.relative ? edges.mean : std::vector<double>(nv, 1.0));
+  std::vector<double> fraction = wall_gap_fractions(topo, plan, p, wall_directions, wall_rays, wall.points);
+  std::vector<StopReason> reason(nv, StopReason::kWallGap);
+  smooth_downward(topo.vertex_neighbours, topo.used, p.height_smoothing_rings, &fraction, &reason);
+  for (int v = 0; v < nv; ++v) {
+    if (!topo.used[v] || !(fraction[v] < 1.0)) continue;
+    const double budget = fraction[v] * plan.target_total[v];
+    if (p.limit_policy == LimitPolicy::kCompress)
+      compress_from(&plan, v, 0, budget, reason[v]);
+    else
+      end_column_after(&plan, v, layers_that_fit(plan, v, 0, budget), reason[v]);
+  }
+  end_at_aspect_ratio(edges, p, &plan);
+  return plan;
 }
 
 }  // namespace blayer

@@ -13,6 +13,7 @@ ColumnState ColumnState::on_wall(const std::vector<Vec3>& wall_points, const std
   for (int v = 0; v < nv; ++v) c.stopped[v] = !used[v];
   c.reason.assign(nv, StopReason::kNone);
   c.path.assign(nv, 0.0);
+  c.first = wall_points;
   return c;
 }
 

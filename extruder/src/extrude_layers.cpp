@@ -5,11 +5,13 @@
 
 #include "blayer/core/errors.h"
 #include "blayer/extruder/column_heights.h"
+#include "blayer/extruder/column_plan.h"
 #include "blayer/extruder/column_state.h"
 #include "blayer/extruder/front_checker.h"
 #include "blayer/extruder/layer_assembly.h"
 #include "blayer/extruder/layer_steps.h"
 #include "blayer/extruder/step_directions.h"
+#include "blayer/extruder/wall_planes.h"
 #include "blayer/extruder/wall_topology.h"
 
 namespace blayer {
@@ -17,6 +19,11 @@ namespace blayer {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// A column point below its planned height above the wall planes by more than this
+// relative amount was held back by the step-stretch cap (the step formula is exact
+// otherwise; 1e-9 is far above its rounding).
+constexpr double kShortfallTolerance = 1e-9;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -46,12 +53,13 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   rep.n_wall_points = static_cast<int>(wall.points.size());
   rep.n_wall_triangles = static_cast<int>(wall.triangles.size());
 
-  // Setup: topology, wall directions, checker trees, column heights.
+  // Setup: topology, wall directions, checker trees, column plan.
   auto t0 = Clock::now();
   const WallTopology topo = build_wall_topology(wall);
+  const WallPlanes planes(wall, topo);
   StepDirections dirs = compute_step_directions(wall, topo, topo.used, params);
   FrontChecker checker(wall, params.check_collisions);
-  const ColumnHeights heights = plan_column_heights(wall, topo, rep.growth, params, dirs, checker.wall_rays());
+  ColumnPlan plan = plan_column_heights(wall, topo, rep.growth, params, dirs, checker.wall_rays());
   ColumnState columns = ColumnState::on_wall(wall.points, topo.used);
   LayerAssembler assembler(wall, dirs);
   TriSurface front;
@@ -60,27 +68,36 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   rep.t_setup = seconds_since(t0);
 
   for (int k = 0; k < rep.growth.layers; ++k) {
+    stop_planned_ends(k, plan, &columns);
     const std::vector<char> active = growing(columns);
     if (std::find(active.begin(), active.end(), 1) == active.end()) break;
 
     t0 = Clock::now();
     if (k > 0) {
       front.points = columns.top;
-      dirs = compute_step_directions(front, topo, active, params);
+      int n_turned = 0;
+      dirs = update_step_directions(front, topo, active, params, dirs, &n_turned);
+      rep.n_turned_directions += n_turned;
     }
     for (int v = 0; v < columns.size(); ++v)
-      if (active[v] && !dirs.ok[v]) columns.stop(v, StopReason::kVisibility);
-    LayerSteps steps = plan_layer_steps(k, rep.growth, heights, dirs, columns, params);
+      if (active[v] && !dirs.ok[v]) {
+        end_column_after(&plan, v, k, StopReason::kVisibility);
+        columns.stop(v, StopReason::kVisibility);
+      }
     rep.t_normals += seconds_since(t0);
 
     t0 = Clock::now();
     checker.begin_layer(k, columns.top, columns.layers);
-    limit_steps_by_proximity(checker.front_rays(), topo, dirs, params, &columns, &steps);
+    limit_by_proximity(k, checker.front_rays(), topo, planes, dirs, params, &plan, &columns);
     rep.t_proximity += seconds_since(t0);
 
     t0 = Clock::now();
-    const std::vector<char> grows = settle_layer(wall.triangles, topo, params, &checker, &dirs, &steps, &columns, &next);
+    const std::vector<char> grows =
+        settle_layer(k, wall.triangles, topo, planes, params, &checker, &dirs, &plan, &columns, &next);
     rep.t_checks += seconds_since(t0);
+    for (int v = 0; v < columns.size(); ++v)
+      if (grows[v] && planes.height_above(v, next[v]) < (1.0 - kShortfallTolerance) * plan.cumulative(v, k))
+        note_limit(&plan, v, StopReason::kStepStretch);
 
     t0 = Clock::now();
     assembler.commit_layer(k, grows, next, dirs, &columns);
@@ -103,7 +120,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   rep.t_assembly += seconds_since(t0);
 
   t0 = Clock::now();
-  summarise_extrusion(wall, topo, heights, columns, res.mesh, assembler.point_column(), &rep);
+  summarise_extrusion(wall, topo, plan, columns, res.mesh, &rep);
   rep.t_report = seconds_since(t0);
   rep.t_total = seconds_since(t_start);
   return res;

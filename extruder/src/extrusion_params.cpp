@@ -14,6 +14,9 @@ const char* stop_reason_name(StopReason r) {
     case StopReason::kQuality: return "quality";
     case StopReason::kProximity: return "proximity";
     case StopReason::kVisibility: return "visibility";
+    case StopReason::kWallGap: return "wall_gap";
+    case StopReason::kAspectRatio: return "aspect_ratio";
+    case StopReason::kStepStretch: return "step_stretch";
   }
   return "unknown";
 }
@@ -25,11 +28,10 @@ void check_extrusion_params(const ExtrusionParams& p) {
   if (p.direction_repair_passes < 0) fail("direction_repair_passes must be >= 0");
   if (!(p.proximity_safety > 0.0 && p.proximity_safety <= 0.5))
     fail("proximity_safety must be in (0, 0.5] (two fronts growing towards each other meet in the middle)");
-  if (!(p.max_height_to_edge_ratio >= 0.0) || !std::isfinite(p.max_height_to_edge_ratio))
-    fail("max_height_to_edge_ratio must be >= 0 (0 disables the cap)");
+  if (!(p.max_layer_aspect >= 0.0) || !std::isfinite(p.max_layer_aspect))
+    fail("max_layer_aspect must be >= 0 (0 disables the layer end)");
   if (!(p.min_visibility > 0.0 && p.min_visibility < 1.0)) fail("min_visibility must be in (0, 1)");
   if (!(p.max_step_stretch >= 1.0) || !std::isfinite(p.max_step_stretch)) fail("max_step_stretch must be >= 1");
-  if (!(p.min_layer_fraction > 0.0 && p.min_layer_fraction <= 1.0)) fail("min_layer_fraction must be in (0, 1]");
 }
 
 }  // namespace blayer

@@ -46,6 +46,7 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
   for (int v = 0; v < nv; ++v) {
     if (!grows[v]) continue;
     columns->path[v] += norm(next[v] - columns->top[v]);
+    if (columns->layers[v] == 0) columns->first[v] = next[v];
     columns->top[v] = next[v];
     columns->top_id[v] = new_top[v];
     ++columns->layers[v];

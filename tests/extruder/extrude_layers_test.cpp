@@ -195,7 +195,7 @@ TEST(ExtrudeLayers, ThinSlotFrontsStopBeforeMeeting) {
   ASSERT_GT(max_left, 0.0);
   EXPECT_LT(max_left, min_right) << "fronts in the slot met";
   EXPECT_LE(max_left - 2 * cell, 0.5 * cell);
-  EXPECT_GT(r.report.n_gap_limited_columns, 0);
+  EXPECT_GT(r.report.limited_columns[static_cast<int>(StopReason::kWallGap)], 0);
 }
 
 TEST(ExtrudeLayers, RelativeHeightsScaleWithTheLocalEdgeLength) {
@@ -208,17 +208,6 @@ TEST(ExtrudeLayers, RelativeHeightsScaleWithTheLocalEdgeLength) {
   // Icosphere edges vary by ~20 % around the mean.
   EXPECT_NEAR(r.report.first_height.mean, 0.1 * e, 0.2 * 0.1 * e);
   EXPECT_NEAR(r.report.thickness_fraction.mean, 1.0, 0.05);
-}
-
-TEST(ExtrudeLayers, HeightCapKeepsAllLayersButThinsThem) {
-  const TriSurface wall = test::icosphere(2, 1.0);
-  ExtrusionParams p = params(4, 0.1, 1.2);  // total 0.54, edges ~0.27: ratio 2
-  p.max_height_to_edge_ratio = 0.5;
-  const ExtrusionResult r = extrude_layers(wall, p);
-  expect_valid_extrusion(wall, r);
-  EXPECT_EQ(r.report.coverage, 1.0);
-  EXPECT_GT(r.report.n_height_capped_columns, 0);
-  EXPECT_LT(r.report.thickness_fraction.max, 0.5);
 }
 
 TEST(ExtrudeLayers, ResultDoesNotDependOnTheThreadCount) {

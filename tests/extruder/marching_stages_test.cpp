@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "blayer/extruder/column_heights.h"
+#include "blayer/extruder/column_plan.h"
+#include "blayer/extruder/wall_planes.h"
 #include "blayer/extruder/front_checker.h"
 #include "blayer/extruder/height_smoothing.h"
 #include "blayer/extruder/layer_assembly.h"
@@ -92,37 +94,58 @@ TriSurface facing_plates(double gap) {
   return lower;
 }
 
-TEST(ColumnHeights, WallGapCapScalesColumnsFacingAnotherWall) {
+TEST(ColumnHeights, WallGapFitsColumnsFacingAnotherWallIntoTheSafetyShare) {
   const double gap = 1.0;
   const TriSurface wall = facing_plates(gap);
   const WallTopology topo = build_wall_topology(wall);
-  ExtrusionParams p = law_params(4, 0.25, 1.0);  // T = 1 > 0.45 x gap
-  p.max_height_to_edge_ratio = 0.0;
+  ExtrusionParams p = law_params(4, 0.05, 2.0);  // 0.05 0.1 0.2 0.4: T = 0.75 > 0.45 x gap
   p.height_smoothing_rings = 0;
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
   FrontChecker checker(wall, true);
-  const ColumnHeights h = plan_column_heights(wall, topo, law, p, d, checker.wall_rays());
-  // Interior columns see the other plate at the gap: total scaled to 0.45 x gap.
+  const ColumnPlan plan = plan_column_heights(wall, topo, law, p, d, checker.wall_rays());
   const int centre = 2 * 5 + 2;
-  EXPECT_TRUE(h.gap_limited[centre]);
-  EXPECT_NEAR(h.scale[centre] * law.total_thickness, p.proximity_safety * gap, 1e-12);
-  EXPECT_FALSE(h.capped[centre]);
+  EXPECT_EQ(plan.limit[centre], StopReason::kWallGap);
+  EXPECT_EQ(plan.planned_layers[centre], 4);
+  EXPECT_DOUBLE_EQ(plan.height(centre, 0), 0.05);
+  EXPECT_NEAR(plan.remaining(centre, 0), p.proximity_safety * gap, 1e-12);
 }
 
-TEST(ColumnHeights, HeightCapIsRatioTimesShortestEdge) {
-  const TriSurface wall = flat_grid(4, 0.1);
-  const WallTopology topo = build_wall_topology(wall);
-  ExtrusionParams p = law_params(4, 0.25, 1.0);  // T = 1
-  p.height_smoothing_rings = 0;
-  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
-  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
-  FrontChecker checker(wall, true);
-  const ColumnHeights h = plan_column_heights(wall, topo, law, p, d, checker.wall_rays());
-  for (int v = 0; v < topo.n_points(); ++v) {
-    EXPECT_TRUE(h.capped[v]);
-    EXPECT_NEAR(h.scale[v], p.max_height_to_edge_ratio * 0.1, 1e-12) << v;
-  }
+TEST(ColumnPlan, CompressionSolvesTheLargestRatioThatFits) {
+  ResolvedGrowthLaw law = resolve_growth_law(GrowthLaw{5, 1.0, 2.0, 0.0, 0.0, false});  // 1 2 4 8 16
+  ColumnPlan plan = plan_columns(law, {1.0});
+  ASSERT_TRUE(compress_from(&plan, 0, 2, 12.0, StopReason::kProximity));  // layers 2..4 from p = 2
+  // 2 (r + r^2 + r^3) = 12 -> r^3 + r^2 + r - 6 = 0 -> r = 1.5761...
+  const double r = plan.height(0, 2) / 2.0;
+  EXPECT_NEAR(r * r * r + r * r + r, 6.0, 1e-12);
+  EXPECT_NEAR(plan.remaining(0, 2), 12.0, 1e-12);
+  EXPECT_NEAR(plan.height(0, 3), 2.0 * r * r, 1e-12);
+  EXPECT_EQ(plan.height(0, 0), 1.0);
+  EXPECT_EQ(plan.height(0, 1), 2.0);
+  EXPECT_EQ(plan.planned_layers[0], 5);
+  EXPECT_EQ(plan.limit[0], StopReason::kProximity);
+  EXPECT_FALSE(compress_from(&plan, 0, 2, 20.0, StopReason::kQuality)) << "fits: no change";
+}
+
+TEST(ColumnPlan, UniformLayersAreTheLastResortBeforeEnding) {
+  ResolvedGrowthLaw law = resolve_growth_law(GrowthLaw{5, 1.0, 2.0, 0.0, 0.0, false});
+  ColumnPlan plan = plan_columns(law, {1.0});
+  ASSERT_TRUE(compress_from(&plan, 0, 0, 3.5, StopReason::kWallGap));  // 5 x 1 > 3.5
+  EXPECT_EQ(plan.planned_layers[0], 3);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(plan.height(0, k), 1.0);
+  ColumnPlan tiny = plan_columns(law, {1.0});
+  ASSERT_TRUE(compress_from(&tiny, 0, 0, 0.9, StopReason::kWallGap));  // below the first height
+  EXPECT_EQ(tiny.planned_layers[0], 0);
+}
+
+TEST(ColumnPlan, LoweringALayerRestartsTheGrowthFromIt) {
+  ResolvedGrowthLaw law = resolve_growth_law(GrowthLaw{4, 1.0, 2.0, 0.0, 0.0, false});  // 1 2 4 8
+  ColumnPlan plan = plan_columns(law, {1.0});
+  lower_layer(&plan, 0, 2, 1.5, StopReason::kQuality);
+  EXPECT_EQ(plan.height(0, 2), 1.5);
+  EXPECT_EQ(plan.height(0, 3), 3.0);
+  EXPECT_EQ(plan.limit[0], StopReason::kQuality);
+  EXPECT_EQ(plan.target_total[0], 15.0);
 }
 
 TEST(StepDirections, SmoothingNeverLowersVisibilityBelowTheRawDirection) {
@@ -221,72 +244,105 @@ TEST(FrontChecker, FlagsANewFrontThatCrossesTheOtherWall) {
   EXPECT_EQ(v.reason[centre], StopReason::kCollision);
 }
 
-TEST(LayerSteps, ProximityCutsTheStepAndStopsBelowTheMinimumFraction) {
+TEST(LayerSteps, StepsReachThePlannedHeightAboveTheWallPlanes) {
+  const TriSurface wall = test::icosphere(2, 1.0);
+  const WallTopology topo = build_wall_topology(wall);
+  const WallPlanes planes(wall, topo);
+  const ExtrusionParams p = law_params(3, 0.01, 1.2);
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  const ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
+  const ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  const std::vector<double> s = layer_steps(0, plan, planes, d, c, p);
+  for (int v = 0; v < topo.n_points(); ++v)
+    EXPECT_NEAR(planes.height_above(v, wall.points[v] + s[v] * d.n[v]), 0.01, 1e-15) << v;
+}
+
+TEST(LayerSteps, ProximityCompressesTheRemainingLayersIntoTheGapShare) {
   const double gap = 1.0;
   const TriSurface wall = facing_plates(gap);
   const WallTopology topo = build_wall_topology(wall);
-  ExtrusionParams p = law_params(1, 0.9, 1.0);
-  p.max_height_to_edge_ratio = 0.0;
+  const WallPlanes planes(wall, topo);
+  ExtrusionParams p = law_params(3, 0.3, 1.0);  // T = 0.9 > 0.45
   p.height_smoothing_rings = 0;
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
-  ColumnHeights h;
-  h.base.assign(topo.n_points(), 1.0);
-  h.scale.assign(topo.n_points(), 1.0);
+  ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
   ColumnState c = ColumnState::on_wall(wall.points, topo.used);
-  LayerSteps s = plan_layer_steps(0, law, h, d, c, p);
   FrontChecker checker(wall, true);
   checker.begin_layer(0, c.top, c.layers);
-  limit_steps_by_proximity(checker.front_rays(), topo, d, p, &c, &s);
+  limit_by_proximity(0, checker.front_rays(), topo, planes, d, p, &plan, &c);
   const int centre = 2 * 5 + 2;
-  EXPECT_NEAR(s.phi[centre] * s.step[centre], p.proximity_safety * gap, 1e-12);
+  // 3 x 0.3 does not fit into 0.45 with ratio >= 1: one layer of 0.3 remains.
+  EXPECT_EQ(plan.planned_layers[centre], 1);
+  EXPECT_EQ(plan.limit[centre], StopReason::kProximity);
   EXPECT_FALSE(c.stopped[centre]);
-  p.min_layer_fraction = 0.6;  // 0.45 / 0.9 = 0.5 of the layer: below 0.6, stops
+  p.limit_policy = LimitPolicy::kTerminate;
+  ColumnPlan plan2 = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
   ColumnState c2 = ColumnState::on_wall(wall.points, topo.used);
-  LayerSteps s2 = plan_layer_steps(0, law, h, d, c2, p);
-  limit_steps_by_proximity(checker.front_rays(), topo, d, p, &c2, &s2);
-  EXPECT_TRUE(c2.stopped[centre]);
-  EXPECT_EQ(c2.reason[centre], StopReason::kProximity);
+  limit_by_proximity(0, checker.front_rays(), topo, planes, d, p, &plan2, &c2);
+  EXPECT_EQ(plan2.planned_layers[centre], 1);
 }
 
-TEST(LayerSteps, SettlingStopsAColumnWhoseCellsCannotBeMadeValid) {
+TEST(LayerSteps, AFirstLayerThatCannotBeMadeValidIsNotGrown) {
   const TriSurface wall = flat_grid(4);
   const WallTopology topo = build_wall_topology(wall);
-  ExtrusionParams p = law_params(1, 0.1, 1.0);
+  const WallPlanes planes(wall, topo);
+  ExtrusionParams p = law_params(2, 0.5, 1.0);
   p.normal_smoothing_iterations = 0;
   p.direction_repair_passes = 0;
   p.height_smoothing_rings = 0;
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   StepDirections d = compute_step_directions(wall, topo, topo.used, p);
   const int centre = 2 * 5 + 2;
-  d.n[centre] = Vec3{0.0, 0.0, -1.0};  // the centre column points into the wall
-  d.visibility[centre] = 1.0;          // (pretending it were visible)
-  ColumnHeights h;
-  h.base.assign(topo.n_points(), 1.0);
-  h.scale.assign(topo.n_points(), 1.0);
+  // Leans so far that a step 0.5 above the wall moves it 1.5 sideways, past its
+  // neighbour one unit away.
+  d.n[centre] = normalized(Vec3{3.0, 0.0, 1.0});
+  ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
   ColumnState c = ColumnState::on_wall(wall.points, topo.used);
-  LayerSteps s = plan_layer_steps(0, law, h, d, c, p);
   FrontChecker checker(wall, true);
   checker.begin_layer(0, c.top, c.layers);
   std::vector<Vec3> next(wall.points.size());
-  const std::vector<char> grows = settle_layer(wall.triangles, topo, p, &checker, &d, &s, &c, &next);
+  const std::vector<char> grows = settle_layer(0, wall.triangles, topo, planes, p, &checker, &d, &plan, &c, &next);
   EXPECT_FALSE(grows[centre]);
-  EXPECT_TRUE(c.stopped[centre]);
   EXPECT_EQ(c.reason[centre], StopReason::kQuality);
-  EXPECT_EQ(next[centre], wall.points[centre]);
-  // Halving from 1 reaches min_layer_fraction 0.25 after two failures: phi 0.25 still
-  // fails, 0.125 stops.
-  EXPECT_DOUBLE_EQ(s.phi[centre], 0.125);
-  // Every column of a failing cell is cut alike, so the centre's neighbours stop with
-  // it; columns sharing no triangle with the centre keep the full step.
-  std::vector<char> near(topo.n_points(), 0);
-  near[centre] = 1;
-  for (const int* u = topo.vertex_neighbours.begin(centre); u != topo.vertex_neighbours.end(centre); ++u) near[*u] = 1;
+  EXPECT_EQ(plan.planned_layers[centre], 0);
+  // The first height is never lowered: every column that grows stands at h1.
   for (int v = 0; v < topo.n_points(); ++v) {
-    if (near[v]) continue;
-    EXPECT_TRUE(grows[v]) << v;
-    EXPECT_DOUBLE_EQ(s.phi[v], 1.0) << v;
+    if (grows[v]) EXPECT_NEAR(planes.height_above(v, next[v]), 0.5, 1e-15) << v;
   }
+}
+
+TEST(LayerSteps, AFailingUpperLayerIsLoweredBeforeTheColumnEnds) {
+  const TriSurface wall = flat_grid(4);
+  const WallTopology topo = build_wall_topology(wall);
+  const WallPlanes planes(wall, topo);
+  ExtrusionParams p = law_params(2, 0.1, 4.0);  // layer 1 planned at 0.4
+  p.normal_smoothing_iterations = 0;
+  p.direction_repair_passes = 0;
+  p.height_smoothing_rings = 0;
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  const int centre = 2 * 5 + 2;
+  ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  for (int v = 0; v < topo.n_points(); ++v) {  // after a first layer of 0.1
+    c.top[v] = wall.points[v] + Vec3{0.0, 0.0, 0.1};
+    c.layers[v] = 1;
+  }
+  // The centre column leans by 45 degrees: a step of 0.4 x sqrt 2 moves it 0.4 sideways,
+  // across its neighbour one unit away only at heights above ~1; make the neighbour
+  // spacing effectively 0.25 by leaning harder.
+  d.n[centre] = normalized(Vec3{4.0, 0.0, 1.0});
+  FrontChecker checker(wall, true);
+  checker.begin_layer(1, c.top, c.layers);
+  std::vector<Vec3> next(wall.points.size());
+  const std::vector<char> grows = settle_layer(1, wall.triangles, topo, planes, p, &checker, &d, &plan, &c, &next);
+  ASSERT_TRUE(grows[centre]) << "lowered, not ended";
+  EXPECT_LT(plan.height(centre, 1), 0.4);
+  EXPECT_GE(plan.height(centre, 1), 0.1);
+  EXPECT_EQ(plan.limit[centre], StopReason::kQuality);
+  EXPECT_NEAR(planes.height_above(centre, next[centre]), 0.1 + plan.height(centre, 1), 1e-12);
 }
 
 TEST(LayerAssembly, CellTypesFollowHowManyColumnsGrow) {
@@ -309,6 +365,25 @@ TEST(LayerAssembly, CellTypesFollowHowManyColumnsGrow) {
   EXPECT_EQ(a.columns_per_layer(), std::vector<int>{3});
   EXPECT_NE(m.find_point_array("column_height"), nullptr);
   EXPECT_DOUBLE_EQ(m.find_point_array("column_height")->values[4], 0.1);  // point 4 = top of column 0
+}
+
+}  // namespace
+}  // namespace blayer
+
+namespace blayer {
+namespace {
+
+TEST(TriangleBvh, SegmentsWithNegativeZeroComponentsFindBoxesOnTheirOriginsPlane) {
+  // Boxes whose y range ends exactly at the ray's origin y: the ray runs along their
+  // face. A direction of (-1, -0, 0) must see them as (-1, +0, 0) does.
+  std::vector<Box> boxes{{{0.0, 0.5, 0.0}, {0.1, 0.75, 1.0}}, {{0.0, 0.75, 0.0}, {0.1, 1.0, 1.0}}};
+  TriangleBvh tree;
+  tree.build(boxes);
+  for (const Vec3& dir : {Vec3{-1.0, 0.0, 0.0}, Vec3{-1.0, -0.0, 0.0}, Vec3{-1.0, 0.0, -0.0}}) {
+    int seen = 0;
+    tree.for_each_on_segment({1.0, 0.75, 0.5}, dir, 2.0, [&](int, double*) { ++seen; });
+    EXPECT_EQ(seen, 2) << dir[1];
+  }
 }
 
 }  // namespace

@@ -1,11 +1,13 @@
-// Column heights before marching: the growth law's heights per column (times the local
-// mean edge length when the law is relative), and the caps on a column's total height
-// known from the wall alone.
+// Column heights before marching: the growth law on every column (times the local mean
+// edge length when the law is relative), fitted into the gap to the wall that each
+// column faces, and ended where a layer would outgrow the wall spacing when
+// max_layer_aspect is set.
 #pragma once
 
 #include <vector>
 
 #include "blayer/core/surface.h"
+#include "blayer/extruder/column_plan.h"
 #include "blayer/extruder/extrusion_params.h"
 #include "blayer/extruder/proximity_rays.h"
 #include "blayer/extruder/step_directions.h"
@@ -13,32 +15,28 @@
 
 namespace blayer {
 
-struct ColumnHeights {
-  // base[v] * scale[v] * law.heights[k] is the target height of layer k in column v.
-  std::vector<double> base;   // 1, or the mean wall edge length at v for a relative law
-  std::vector<double> scale;  // <= 1: the caps below, smoothed downward
-  std::vector<char> capped;       // scaled down by max_height_to_edge_ratio
-  std::vector<char> gap_limited;  // scaled down by the wall-gap cap
-};
-
 // Mean and shortest length of the wall edges at each point (0 for unused points).
-// Relative heights use the mean (the vertex's size); the default height cap uses the
-// shortest, because on stretched triangles the short side is the distance over which
-// neighbouring columns must not overtake each other sideways.
 struct EdgeLengths {
   std::vector<double> mean;
   std::vector<double> shortest;
 };
 EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo);
 
-// The two caps, both scaling all layers of a column alike:
-//   height cap  total <= max_height_to_edge_ratio x the height_cap_length at v;
-//   wall gap    the whole column (about total / V long, V its wall visibility, 1/V
-//               capped at max_step_stretch) spans at most proximity_safety of the
-//               distance to the wall part its wall direction faces (rays: wall only).
-// The scale is smoothed downward over height_smoothing_rings.
-ColumnHeights plan_column_heights(const TriSurface& wall, const WallTopology& topo, const ResolvedGrowthLaw& law,
-                                  const ExtrusionParams& p, const StepDirections& wall_directions,
-                                  const ProximityRays& wall_rays);
+// The plan before marching:
+//   law        h_k x base (base: 1, or the mean wall edge length at v when relative);
+//   wall gap   a column may cover at most proximity_safety of the distance, along its
+//              wall direction, to the wall part it faces (rays against the wall only):
+//              the budget proximity_safety x gap x V (V: the direction's visibility
+//              over the incident wall faces, so the budget is a height above them) is
+//              smoothed downward over height_smoothing_rings (as a fraction of the
+//              column's target), and the column is compressed into it (compress_from:
+//              the first height is kept; a gap below first height / proximity_safety
+//              plans no layer, reason kWallGap);
+//   aspect     with max_layer_aspect > 0, the column ends before the first layer
+//              higher than max_layer_aspect x the mean wall edge length at v
+//              (reason kAspectRatio).
+ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& topo, const ResolvedGrowthLaw& law,
+                               const ExtrusionParams& p, const StepDirections& wall_directions,
+                               const ProximityRays& wall_rays);
 
 }  // namespace blayer

@@ -17,6 +17,7 @@ struct ColumnState {
   std::vector<char> stopped;           // ended (or never started: unused points)
   std::vector<StopReason> reason;      // why it ended early (kNone while growing)
   std::vector<double> path;            // length of the column's polyline so far
+  std::vector<Vec3> first;             // the column's first point above the wall (once grown)
 
   // Starts every used point on the wall; unused points are stopped with kNone.
   static ColumnState on_wall(const std::vector<Vec3>& wall_points, const std::vector<char>& used);

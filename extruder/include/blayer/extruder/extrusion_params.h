@@ -7,24 +7,33 @@
 
 namespace blayer {
 
-// Why a column ended before layer N; written as the int point array `stop_reason`.
+// Why a column ended before layer N (written as the int point array `stop_reason`), or,
+// for a column that kept its layers, what compressed it (`limit_reason`).
 enum class StopReason : int {
-  kNone = 0,        // reached all layers
+  kNone = 0,        // reached all layers at the law's heights
   kCollision = 1,   // the new front would intersect itself, the previous front or the wall
   kQuality = 2,     // a new cell failed the exact corner-tet test even at reduced height
-  kProximity = 3,   // the gap ahead (another front or wall) allows less than a useful layer
+  kProximity = 3,   // another front or wall ahead of the marching column
   kVisibility = 4,  // no direction sees all incident front faces by min_visibility
+  kWallGap = 5,     // the wall across a gap, seen along the wall direction before marching
+  kAspectRatio = 6, // a layer would exceed max_layer_aspect x the local wall spacing
+  kStepStretch = 7, // the step would exceed max_step_stretch x the layer height (a sharp
+                    // convex edge or corner), so the column stands lower than planned
 };
-constexpr int kStopReasonCount = 5;
+constexpr int kStopReasonCount = 8;
 const char* stop_reason_name(StopReason r);
 
-// The wall length a column's total height is capped against (max_height_to_edge_ratio).
-enum class HeightCapLength : int {
-  kShortestEdge = 0,  // shortest wall edge at the vertex
-  kMeanEdge = 1,      // mean wall edge length at the vertex
-  kFaceSize = 2,      // sqrt(2 x mean area of the incident wall triangles): the leg of a
-                      // right isosceles triangle of that area, a size of the prism caps
-                      // that, unlike the shortest edge, is not set by one short side
+// How a column's direction evolves from layer to layer (update_step_directions).
+enum class ColumnDirections : int {
+  kKept = 0,        // straight along the smoothed wall direction while it sees the front
+  kRecomputed = 1,  // the front's point normals, recomputed on every layer
+};
+
+// What a limit (gap, proximity, a failing cell) does to a column.
+enum class LimitPolicy : int {
+  kCompress = 0,   // keep the first height and N layers, compress the upper layers;
+                   // end the column only when even uniform layers do not fit
+  kTerminate = 1,  // keep the law's heights and end the column at the limit
 };
 
 // Parameters; each default is what the CLI shows in --help.
@@ -41,36 +50,22 @@ struct ExtrusionParams {
   // A column may cover at most this fraction of the gap ahead of it (0 < x <= 0.5: two
   // fronts growing towards each other meet in the middle).
   double proximity_safety = 0.45;
-  // Column height cap relative to the shortest wall edge at the vertex, so that small
-  // faces do not grow needles and columns on stretched triangles cannot overtake each
-  // other sideways (on the pyHyp wing meshes, 2 gives full coverage at ~35 % of the
-  // requested thickness, 5 gives 99 % coverage at ~50 %, 10 drops coverage to 89 %);
-  // 0 disables the cap.
-  double max_height_to_edge_ratio = 4.0;
-  // Which wall length max_height_to_edge_ratio multiplies. The shortest edge stays the
-  // default: measured (N=10, h1 = 2e-4 x diagonal, r = 1.2) as coverage / mean thickness
-  // fraction on the pyHyp 717 wing, the pyHyp BWB and the 16k ONERA M6,
-  //   shortest x4  1.000/0.43  1.000/0.47  1.000/0.99
-  //   shortest x6  0.991/0.51  0.976/0.53  1.000/1.00  (min scaled Jacobian 0.0016 -> 0 on the 717)
-  //   mean x3      0.981/0.75  0.838/0.71  1.000/0.99
-  //   mean x4      0.979/0.80  0.830/0.73  1.000/1.00
-  //   face x4      0.899/0.64  0.842/0.64  1.000/0.99
-  //   no cap       0.939/0.97  0.772/0.85  1.000/1.00
-  // every longer reference length loses the BWB's coverage to quality and collision
-  // stops, and a larger ratio buys thickness with coverage and cell quality.
-  HeightCapLength height_cap_length = HeightCapLength::kShortestEdge;
+  // How directions evolve and what a limit does (see the enums above).
+  ColumnDirections column_directions = ColumnDirections::kKept;
+  LimitPolicy limit_policy = LimitPolicy::kCompress;
+  // AFLR3-style layer end: a column ends before the first layer whose height exceeds
+  // this multiple of the mean wall edge length at its point (aspect ratio of the
+  // cell); 0 disables it.
+  double max_layer_aspect = 0.0;
   // Smallest accepted visibility min_i n.f_i (cosine of the largest angle between the
   // step direction and an incident face normal); 0.05 is about 87 degrees.
   double min_visibility = 0.05;
   // Cap on the step stretch 1/V; a column with smaller V still steps, but ends less
   // than h above its steepest incident face.
   double max_step_stretch = 5.0;
-  // A layer cut below this fraction of its height stops the column instead, so that no
-  // sliver layers are made.
-  double min_layer_fraction = 0.25;
   // Passes that first turn the columns of failing cells / colliding triangles towards
   // the mean direction of those triangles (keeping half their visibility) before any
-  // height is cut; 0 goes straight to height reduction.
+  // layer is lowered; 0 goes straight to lowering.
   int direction_repair_passes = 2;
   // Exact per-layer intersection check of the new front (off: faster, no guarantee
   // that the envelope is free of self-intersections).

@@ -29,6 +29,19 @@ struct StepDirections {
 StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
                                        const std::vector<char>& active, const ExtrusionParams& p);
 
+// Directions for a later layer from the previous layer's (column_directions):
+//   kKept        each column keeps its direction while it sees the current front's
+//                faces by min_visibility, so columns stay straight where the front is
+//                an offset of the wall; a column that does not is turned towards the
+//                front's own point normal (normal_method, computed for that point only)
+//                by the least blend that restores half of that normal's visibility
+//                (or min_visibility, whichever is larger); it is not ok when even the
+//                front normal is below min_visibility. *n_turned counts those columns.
+//   kRecomputed  compute_step_directions on the front (normals recomputed everywhere).
+StepDirections update_step_directions(const TriSurface& front, const WallTopology& topo,
+                                      const std::vector<char>& active, const ExtrusionParams& p,
+                                      const StepDirections& previous, int* n_turned);
+
 // min over the incident front faces of v of n.f.
 double visibility_of(const StepDirections& d, const WallTopology& topo, int v, const Vec3& n);
 
