@@ -1,12 +1,11 @@
 #include <cstdio>
-#include <fstream>
 
 #include "blayer/core/errors.h"
+#include "blayer/core/stopwatch.h"
+#include "blayer/io/atomic_file.h"
 #include "blayer/io/vtk_io.h"
 #include "blayer/quality/mesh_check.h"
 #include "commands.h"
-#include "output_files.h"
-#include "run_timer.h"
 
 namespace blayer {
 
@@ -14,14 +13,14 @@ int run_check_command(const ParamValues& params) {
   const std::string input = params.get_string("input");
   if (input.empty()) throw InputError("no mesh given (blayer check MESH.vtu)");
   const std::string json = params.get_string("json"), bad = params.get_string("bad");
-  OutputFiles outputs;
+  AtomicOutputs outputs;
   const std::string json_tmp = json.empty() ? "" : outputs.stage(json);
   const std::string bad_tmp = bad.empty() ? "" : outputs.stage(bad);
 
-  RunTimer timer;
+  const Stopwatch timer;
   const VolumeMeshFile file = read_volume_mesh(input);
   const double read_seconds = timer.seconds();
-  RunTimer check_timer;
+  const Stopwatch check_timer;
   const MeshCheckReport report = check_volume_mesh(file.mesh);
   const double check_seconds = check_timer.seconds();
 
@@ -33,7 +32,7 @@ int run_check_command(const ParamValues& params) {
   std::printf("  time: read %.2f s, check %.2f s (%.0f cells/s)\n", read_seconds, check_seconds,
               check_seconds > 0 ? static_cast<double>(file.mesh.n_cells()) / check_seconds : 0.0);
 
-  if (!json.empty()) std::ofstream(json_tmp) << check_report_to_json(report).dump(2) << "\n";
+  if (!json.empty()) write_text_file(json_tmp, check_report_to_json(report).dump(2) + "\n", json);
   if (!bad.empty()) write_vtu(extract_bad_cells(file.mesh, report), bad_tmp);
   outputs.commit();
   if (!report.ok()) {

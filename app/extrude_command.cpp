@@ -1,49 +1,45 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "blayer/core/errors.h"
+#include "blayer/core/stopwatch.h"
 #include "blayer/extruder/extrude_layers.h"
+#include "blayer/fill/hybrid_mesh.h"
 #include "blayer/fill/tet_fill.h"
+#include "blayer/io/atomic_file.h"
 #include "blayer/io/prepare_surface.h"
 #include "blayer/io/vtk_io.h"
 #include "blayer/quality/mesh_check.h"
 #include "commands.h"
-#include "output_files.h"
-#include "run_timer.h"
 #include "surface_options.h"
 
 namespace blayer {
 
 namespace {
 
-// First-layer height when the user gives no height at all: a fraction of the model's
-// bounding-box diagonal, small enough for wall-resolved RANS on typical models.
-constexpr double kDefaultFirstHeightFraction = 2e-4;
-
 ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, std::vector<std::string>* notes) {
   ExtrusionParams e;
-  GrowthLaw& g = e.growth;
+  GrowthLaw g;
   g.layers = p.get_int("layers");
   g.first_height = p.get_real("first-height");
   g.growth_ratio = p.get_real("growth-ratio");
   g.total_thickness = p.get_real("total-thickness");
   g.last_height = p.get_real("last-height");
   g.relative = p.get_bool("relative-heights");
+  // The default height is for a user who gave none of the three options; an explicit
+  // 0 is the growth law's "derive it" and is left to the law's own checks.
+  e.growth = g;
   if (!p.is_set("first-height") && !p.is_set("total-thickness") && !p.is_set("last-height")) {
-    if (g.relative)
-      throw InputError("--relative-heights needs first-height, total-thickness or last-height");
-    g.first_height = kDefaultFirstHeightFraction * bounding_box_diagonal(wall.points);
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "no height given: first-height = %.6g (2e-4 x bounding-box diagonal)",
-                  g.first_height);
-    notes->push_back(buf);
+    if (g.relative) throw InputError("--relative-heights needs first-height, total-thickness or last-height");
+    std::string note;
+    e.growth = with_default_first_height(g, bounding_box_diagonal(wall.points), &note);
+    notes->push_back(note);
   }
   if (!parse_normal_method(p.get_string("method"), &e.normal_method))
     throw InputError("--method: unknown normal method '" + p.get_string("method") + "'");
@@ -80,27 +76,74 @@ std::function<void(int, int)> progress_bar() {
   };
 }
 
-// Appends the fill's tets to the layer mesh. Envelope point i of the fill is layer-mesh
-// point envelope_ids[i]; the fill's other points are appended.
-void append_fill(VolumeMesh& mesh, const std::vector<std::int64_t>& envelope_ids, const FillResult& fill,
-                 std::size_t n_envelope_points) {
-  const std::size_t n_layer_cells = mesh.n_cells();
-  const std::int64_t base = static_cast<std::int64_t>(mesh.points.size()) - static_cast<std::int64_t>(n_envelope_points);
-  auto map_point = [&](std::int64_t i) {
-    return i < static_cast<std::int64_t>(n_envelope_points) ? envelope_ids[i] : base + i;
-  };
-  for (std::size_t i = n_envelope_points; i < fill.tets.points.size(); ++i) mesh.points.push_back(fill.tets.points[i]);
-  for (std::size_t c = 0; c < fill.tets.n_cells(); ++c) {
-    std::int64_t nodes[4];
-    for (int k = 0; k < 4; ++k) nodes[k] = map_point(fill.tets.connectivity[fill.tets.offsets[c] + k]);
-    mesh.add_cell(CellType::kTet, nodes);
+// The requested outputs (empty: not requested), and where each is staged.
+struct ExtrudeOutputs {
+  std::string mesh, envelope, boundary, report;
+  std::string mesh_tmp, envelope_tmp, boundary_tmp, report_tmp;
+};
+
+// Stages every output before any work, so that a bad output path fails fast.
+ExtrudeOutputs stage_outputs(const ParamValues& params, AtomicOutputs& outputs) {
+  ExtrudeOutputs o;
+  o.mesh = params.get_string("output");
+  if (o.mesh.empty()) {
+    // "wing.off.gz" -> "wing_layers.vtu" in the current directory.
+    const std::string name = std::filesystem::path(params.get_string("input")).filename().string();
+    o.mesh = name.substr(0, name.find('.')) + "_layers.vtu";
   }
-  // Point arrays: zero on the new points. Cell arrays: layer -1 on tets; region marks them.
-  for (DataArray& a : mesh.point_data) a.values.resize(mesh.points.size() * a.n_components, 0.0);
-  for (DataArray& a : mesh.cell_data) a.values.resize(mesh.n_cells() * a.n_components, a.name == "layer" ? -1.0 : 0.0);
-  DataArray region{"region", 1, true, std::vector<double>(mesh.n_cells(), 1.0)};
-  std::fill(region.values.begin(), region.values.begin() + n_layer_cells, 0.0);
-  mesh.cell_data.push_back(std::move(region));
+  if (std::filesystem::path(o.mesh).extension() != ".vtu")
+    throw InputError(o.mesh + ": the output of extrude is a .vtu file");
+  o.mesh_tmp = outputs.stage(o.mesh);
+  o.envelope = params.get_string("envelope");
+  o.report = params.get_string("report");
+  o.boundary = params.get_string("boundary");
+  if (!o.envelope.empty()) o.envelope_tmp = outputs.stage(o.envelope);
+  if (!o.report.empty()) o.report_tmp = outputs.stage(o.report);
+  if (!o.boundary.empty() && !params.get_bool("fill")) throw InputError("--boundary needs --fill");
+  if (!o.boundary.empty()) o.boundary_tmp = outputs.stage(o.boundary);
+  return o;
+}
+
+// Fills the region beyond the layers with tets and appends them to result.mesh.
+struct FilledRegion {
+  FillResult fill;
+  std::vector<std::int64_t> fill_to_mesh;  // mesh point of every fill point
+};
+
+FilledRegion fill_beyond_layers(const ParamValues& params, Side side, ExtrusionResult& result) {
+  FillOptions fo;
+  fo.region = side == Side::kInward ? FillOptions::Region::kInside : FillOptions::Region::kOutside;
+  fo.farfield_scale = params.get_real("farfield-scale");
+  fo.growth = params.get_real("fill-growth");
+  std::optional<TriSurface> farfield;
+  if (!params.get_string("farfield").empty()) {
+    PrepareOptions fopt;  // the farfield's own orientation is handled by the fill
+    farfield = load_surface(params.get_string("farfield"), fopt).surface;
+    fo.farfield = &*farfield;
+  }
+  std::printf("filling with tetrahedra (TetGen)...\n");
+  std::fflush(stdout);
+  FilledRegion f{fill_with_tets(result.envelope, fo), {}};
+  f.fill_to_mesh = append_fill(f.fill, result.envelope_point_ids, &result.mesh);
+  const FillStats& st = f.fill.stats;
+  std::printf("  %lld tets, %lld Steiner points, min dihedral %.2f deg, max radius-edge %.3f, %.2f s\n",
+              static_cast<long long>(st.n_tets), static_cast<long long>(st.n_steiner_points), st.min_dihedral_deg,
+              st.max_radius_edge, st.seconds_total);
+  return f;
+}
+
+// The one validity decision of a run: the quality module's exact check of the whole
+// assembled mesh (layers and fill). Nothing is written unless it passes; the check's
+// per-cell arrays are added to the mesh.
+MeshCheckReport decide_validity(VolumeMesh& mesh) {
+  MeshCheckReport check = check_volume_mesh(mesh);
+  add_quality_arrays(mesh, check);
+  if (!check.ok())
+    throw std::runtime_error("the assembled mesh failed the independent check (" +
+                             std::to_string(check.totals.inverted) + " inverted, " + std::to_string(check.totals.flat) +
+                             " flat, " + std::to_string(check.totals.non_conforming) +
+                             " non-conforming); no mesh written");
+  return check;
 }
 
 nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, const MeshCheckReport& check,
@@ -127,31 +170,39 @@ nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, 
   return j;
 }
 
+void write_envelope(const ExtrusionResult& result, const std::string& path) {
+  DataArray layers{"layers", 1, true, {}};
+  for (int l : result.column_layers) layers.values.push_back(l);
+  DataArray reason{"stop_reason", 1, true, {}};
+  for (StopReason s : result.stop_reason) reason.values.push_back(static_cast<int>(s));
+  write_vtp(result.envelope, {layers, reason}, {}, path);
+}
+
+void write_boundary(const MarkedBoundary& b, const std::string& path) {
+  DataArray marker{"marker", 1, true, std::vector<double>(b.marker.begin(), b.marker.end())};
+  write_vtp(b.surface, {}, {marker}, path);
+}
+
+void print_written(const ExtrudeOutputs& o, const MeshCheckReport& check, double check_seconds, double total_seconds) {
+  std::printf("check: %zu cells (%zu wedges, %zu pyramids, %zu tets), 0 inverted, 0 non-conforming, "
+              "min scaled Jacobian %.4f (%.2f s)\n",
+              check.totals.cells, check.totals.by_type[2], check.totals.by_type[1], check.totals.by_type[0],
+              check.min_scaled_jacobian(), check_seconds);
+  std::printf("wrote %s", o.mesh.c_str());
+  if (!o.envelope.empty()) std::printf(", %s", o.envelope.c_str());
+  if (!o.boundary.empty()) std::printf(", %s", o.boundary.c_str());
+  if (!o.report.empty()) std::printf(", %s", o.report.c_str());
+  std::printf(" (%.2f s in all)\n", total_seconds);
+}
+
 }  // namespace
 
 int run_extrude_command(const ParamValues& params) {
-  RunTimer total;
+  const Stopwatch total;
   const std::string input = params.get_string("input");
   if (input.empty()) throw InputError("no input surface given (blayer extrude SURFACE -o OUT.vtu)");
-  std::string output = params.get_string("output");
-  if (output.empty()) {
-    // "wing.off.gz" -> "wing_layers.vtu" in the current directory.
-    const std::string name = std::filesystem::path(input).filename().string();
-    output = name.substr(0, name.find('.')) + "_layers.vtu";
-  }
-  if (std::filesystem::path(output).extension() != ".vtu")
-    throw InputError(output + ": the output of extrude is a .vtu file");
-
-  // Stage every output before any work, so a bad output path fails fast.
-  OutputFiles outputs;
-  const std::string vtu_tmp = outputs.stage(output);
-  const std::string envelope = params.get_string("envelope"), report = params.get_string("report"),
-                    boundary = params.get_string("boundary");
-  const std::string envelope_tmp = envelope.empty() ? "" : outputs.stage(envelope);
-  const std::string report_tmp = report.empty() ? "" : outputs.stage(report);
-  const bool fill = params.get_bool("fill");
-  if (!boundary.empty() && !fill) throw InputError("--boundary needs --fill");
-  const std::string boundary_tmp = boundary.empty() ? "" : outputs.stage(boundary);
+  AtomicOutputs outputs;
+  const ExtrudeOutputs out = stage_outputs(params, outputs);
 
   const PrepareOptions surface_opt = surface_options(params);
   const PreparedSurface prepared = load_surface(input, surface_opt);
@@ -167,84 +218,28 @@ int run_extrude_command(const ParamValues& params) {
   std::printf("%s", format_extrusion_report(result.report).c_str());
   const std::string thin = thickness_warning(result.report);
   if (!thin.empty()) std::printf("warning: %s\n", thin.c_str());
+  std::optional<FilledRegion> filled;
+  if (params.get_bool("fill")) filled = fill_beyond_layers(params, surface_opt.side, result);
 
-  std::unique_ptr<FillResult> filled;
-  std::unique_ptr<TriSurface> farfield_surface;
-  if (fill) {
-    FillOptions fo;
-    fo.region = surface_opt.side == Side::kInward ? FillOptions::Region::kInside : FillOptions::Region::kOutside;
-    fo.farfield_scale = params.get_real("farfield-scale");
-    fo.growth = params.get_real("fill-growth");
-    if (!params.get_string("farfield").empty()) {
-      PrepareOptions fopt;  // the farfield's own orientation is handled by the fill
-      farfield_surface = std::make_unique<TriSurface>(load_surface(params.get_string("farfield"), fopt).surface);
-      fo.farfield = farfield_surface.get();
-    }
-    std::printf("filling with tetrahedra (TetGen)...\n");
-    std::fflush(stdout);
-    filled = std::make_unique<FillResult>(fill_with_tets(result.envelope, fo));
-    append_fill(result.mesh, result.envelope_point_ids, *filled, result.envelope.points.size());
-    std::printf("  %lld tets, %lld Steiner points, min dihedral %.2f deg, max radius-edge %.3f, %.2f s\n",
-                static_cast<long long>(filled->stats.n_tets), static_cast<long long>(filled->stats.n_steiner_points),
-                filled->stats.min_dihedral_deg, filled->stats.max_radius_edge, filled->stats.seconds_total);
-  }
+  const Stopwatch check_time;
+  const MeshCheckReport check = decide_validity(result.mesh);
+  const double check_seconds = check_time.seconds();
 
-  RunTimer check_timer;
-  const MeshCheckReport check = check_volume_mesh(result.mesh);
-  add_quality_arrays(result.mesh, check);
-  if (!check.ok())
-    throw std::runtime_error("the assembled mesh failed the independent check (" + std::to_string(check.totals.inverted) +
-                             " inverted, " + std::to_string(check.totals.flat) + " flat, " +
-                             std::to_string(check.totals.non_conforming) + " non-conforming); no mesh written");
-  const double check_seconds = check_timer.seconds();
-
-  write_vtu(result.mesh, vtu_tmp);
-  if (!envelope.empty()) {
-    DataArray layers{"layers", 1, true, {}};
-    for (int l : result.column_layers) layers.values.push_back(l);
-    DataArray reason{"stop_reason", 1, true, {}};
-    for (StopReason s : result.stop_reason) reason.values.push_back(static_cast<int>(s));
-    write_vtp(result.envelope, {layers, reason}, {}, envelope_tmp);
-  }
-  if (!boundary.empty()) {
-    // Wall triangles (marker 1) and farfield triangles (marker 2) on the mesh's points.
-    TriSurface b;
-    b.points = result.mesh.points;
-    DataArray marker{"marker", 1, true, {}};
-    for (const Triangle& t : prepared.surface.triangles) {
-      b.triangles.push_back(t);
-      marker.values.push_back(1);
-    }
-    const std::int64_t base =
-        static_cast<std::int64_t>(result.mesh.points.size() - filled->tets.points.size());
-    for (std::size_t i = 0; i < filled->boundary.triangles.size(); ++i) {
-      if (filled->boundary_marker[i] != kFarfieldMarker) continue;
-      Triangle t = filled->boundary.triangles[i];
-      for (int& v : t) v = static_cast<int>(base + v);
-      // The fill winds farfield triangles into the domain; boundary normals point out.
-      std::swap(t[1], t[2]);
-      b.triangles.push_back(t);
-      marker.values.push_back(2);
-    }
-    write_vtp(b, {}, {marker}, boundary_tmp);
-  }
-  if (!report.empty()) {
-    std::ofstream(report_tmp) << report_json(params, result.report, check, n_layer_cells, filled ? &filled->stats : nullptr,
-                                             total.seconds())
-                                     .dump(2)
-                              << "\n";
-  }
+  write_vtu(result.mesh, out.mesh_tmp);
+  if (!out.envelope.empty()) write_envelope(result, out.envelope_tmp);
+  if (!out.boundary.empty())
+    write_boundary(hybrid_boundary(result.mesh, prepared.surface, filled->fill, filled->fill_to_mesh),
+                   out.boundary_tmp);
+  if (!out.report.empty())
+    write_text_file(out.report_tmp,
+                    report_json(params, result.report, check, n_layer_cells, filled ? &filled->fill.stats : nullptr,
+                                total.seconds())
+                            .dump(2) +
+                        "\n",
+                    out.report);
   outputs.commit();
-
-  std::printf("check: %zu cells (%zu wedges, %zu pyramids, %zu tets), 0 inverted, 0 non-conforming, "
-              "min scaled Jacobian %.4f (%.2f s)\n",
-              check.totals.cells, check.totals.by_type[2], check.totals.by_type[1], check.totals.by_type[0],
-              check.min_scaled_jacobian(), check_seconds);
-  std::printf("wrote %s", output.c_str());
-  if (!envelope.empty()) std::printf(", %s", envelope.c_str());
-  if (!boundary.empty()) std::printf(", %s", boundary.c_str());
-  if (!report.empty()) std::printf(", %s", report.c_str());
-  std::printf(" (%.2f s in all)\n", total.seconds());
+  print_written(out, check, check_seconds, total.seconds());
+  // A valid, written mesh that is thinner than the user requires: its own exit status.
   const double required = params.get_real("require-thickness");
   const double reached = 1.0 - result.report.thin.total_columns;
   if (required > 0.0 && reached < required) {

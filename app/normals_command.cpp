@@ -5,11 +5,12 @@
 #include <map>
 
 #include "blayer/core/errors.h"
+#include "blayer/core/percentile.h"
+#include "blayer/core/stopwatch.h"
 #include "blayer/io/prepare_surface.h"
 #include "blayer/io/vtk_io.h"
 #include "blayer/normals/point_normals.h"
 #include "commands.h"
-#include "run_timer.h"
 #include "surface_options.h"
 
 namespace blayer {
@@ -17,13 +18,6 @@ namespace blayer {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const std::size_t k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
-}
 
 }  // namespace
 
@@ -36,11 +30,11 @@ int run_normals_command(const ParamValues& params) {
   if (!parse_normal_method(params.get_string("method"), &method))
     throw InputError("--method: unknown normal method '" + params.get_string("method") + "'");
 
-  RunTimer total;
+  const Stopwatch total;
   const PreparedSurface prepared = load_surface(input, surface_options(params));
   for (const std::string& n : prepared.notes) std::cout << "note: " << n << "\n";
   const TriSurface& s = prepared.surface;
-  RunTimer solve;
+  const Stopwatch solve;
   const VertexFans fans = build_vertex_fans(s);
   const PointNormals pn = compute_point_normals(s, fans, method);
   const double solve_seconds = solve.seconds();
@@ -66,8 +60,8 @@ int run_normals_command(const ParamValues& params) {
     std::printf("  status %-24s %d\n", normal_status_name(static_cast<NormalStatus>(code)), count);
   std::printf("  min visibility (min n.f)  %.6f  (max face-normal angle %.3f deg)\n", min_v,
               std::acos(std::clamp(min_v, -1.0, 1.0)) * kRadToDeg);
-  std::printf("  normality D [deg]         min %.4f  p1 %.4f  p50 %.4f\n", percentile(nd.values, 0.0),
-              percentile(nd.values, 0.01), percentile(nd.values, 0.5));
+  const std::vector<double> nd_pct = percentiles(nd.values, {0.0, 0.01, 0.5});
+  std::printf("  normality D [deg]         min %.4f  p1 %.4f  p50 %.4f\n", nd_pct[0], nd_pct[1], nd_pct[2]);
   std::printf("  time                      %.3f s normals (%.0f vertices/s), %.3f s in all\n", solve_seconds,
               solve_seconds > 0 ? static_cast<double>(nv) / solve_seconds : 0.0, total.seconds());
   std::printf("  wrote %s\n", output.c_str());

@@ -11,7 +11,6 @@
 #include <sys/resource.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "blayer/core/stopwatch.h"
 #include "blayer/core/surface.h"
 #include "blayer/extruder/extrude_layers.h"
 #include "blayer/io/prepare_surface.h"
@@ -105,9 +105,9 @@ int main(int argc, char** argv) {
   });
   std::printf("%s", blayer::format_extrusion_report(r.report).c_str());
 
-  const auto t0 = std::chrono::steady_clock::now();
+  const blayer::Stopwatch clock;
   const auto pairs = blayer::find_envelope_intersections(wall, r, 100);
-  const double t_check = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double t_check = clock.seconds();
   std::printf("envelope check      %zu intersecting pairs (wall + envelope, exact) in %.3f s\n", pairs.size(),
               t_check);
   if (worst > 0) print_worst_columns(wall, r, worst);

@@ -12,7 +12,6 @@
 #include <tbb/info.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -21,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "blayer/core/stopwatch.h"
 #include "blayer/core/surface.h"
 #include "blayer/core/vertex_fans.h"
 #include "blayer/io/prepare_surface.h"
@@ -44,10 +44,9 @@ double seconds_per_run(const TriSurface& s, const blayer::VertexFans& fans, blay
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   double best = 1e300;
   for (int rep = 0; rep < (s.points.size() > 100000 ? 1 : 3); ++rep) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const blayer::Stopwatch clock;
     const blayer::PointNormals pn = blayer::compute_point_normals(s, fans, m);
-    const auto t1 = std::chrono::steady_clock::now();
-    best = std::min(best, std::chrono::duration<double>(t1 - t0).count());
+    best = std::min(best, clock.seconds());
     if (pn.normal.empty() && !s.points.empty()) std::printf("empty result\n");
   }
   return best;
@@ -87,13 +86,13 @@ void stats(const TriSurface& s, const blayer::VertexFans& fans) {
     int n_reflex = 0;
     for (int j = 0; j < k; ++j)
       n_reflex += blayer::dot(g.face_normals[(j + k - 1) % k], g.dirs[(j + 1) % k]) < -1e-12 ? 1 : 0;
-    const auto t0 = std::chrono::steady_clock::now();
+    const blayer::Stopwatch clock;
     const blayer::MostNormalResult r = blayer::most_normal_normal(g);
-    const auto t1 = std::chrono::steady_clock::now();
+    const double seconds = clock.seconds();
     Row& row = by_reflex[n_reflex];
     ++row.vertices;
     row.candidates += r.n_candidates;
-    row.seconds += std::chrono::duration<double>(t1 - t0).count();
+    row.seconds += seconds;
     ++by_status[static_cast<int>(r.status)];
   }
   std::printf("most-normal per reflex-vertex count: reflex vertices  candidates/vertex  us/vertex  share of time\n");

@@ -5,12 +5,12 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
 
+#include "blayer/core/stopwatch.h"
 #include "blayer/quality/mesh_check.h"
 
 namespace {
@@ -54,10 +54,10 @@ struct Timing {
 };
 
 Timing time_check(const blayer::VolumeMesh& m, blayer::MeshCheckReport* out) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const blayer::Stopwatch clock;
   const std::clock_t c0 = std::clock();
   *out = blayer::check_volume_mesh(m);
-  return {std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+  return {clock.seconds(),
           static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC};
 }
 
@@ -66,9 +66,9 @@ Timing time_check(const blayer::VolumeMesh& m, blayer::MeshCheckReport* out) {
 int main(int argc, char** argv) {
   const int n = argc > 1 ? std::atoi(argv[1]) : 500;
   const int layers = argc > 2 ? std::atoi(argv[2]) : 10;
-  const auto t0 = std::chrono::steady_clock::now();
+  const blayer::Stopwatch clock;
   const blayer::VolumeMesh m = make_prism_mesh(n, layers);
-  const double t_gen = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double t_gen = clock.seconds();
   std::printf("mesh: %zu prisms, %zu points (generated in %.2f s)\n", m.n_cells(), m.points.size(), t_gen);
 
   blayer::MeshCheckReport r;

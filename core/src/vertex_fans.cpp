@@ -1,6 +1,6 @@
 #include "blayer/core/vertex_fans.h"
 
-#include <unordered_map>
+#include "blayer/core/vertex_adjacency.h"
 
 namespace blayer {
 
@@ -20,16 +20,20 @@ VertexFans build_vertex_fans(const TriSurface& s) {
   VertexFans out;
   out.fans.resize(nv);
 
-  // CSR incidence: corners grouped by vertex.
-  std::vector<int> start(nv + 1, 0);
-  for (const Triangle& t : s.triangles)
-    for (int v : t) ++start[v + 1];
-  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<Wedge> wedges(start[nv]);
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (int f = 0; f < static_cast<int>(s.triangles.size()); ++f) {
-    const Triangle& t = s.triangles[f];
-    for (int k = 0; k < 3; ++k) wedges[fill[t[k]]++] = {t[(k + 1) % 3], t[(k + 2) % 3], f};
+  // One wedge per corner, grouped by vertex as in the vertex->triangle table. A
+  // triangle listed twice for v (it repeats v) gives its two corners in order.
+  const CsrTable vtri = vertex_triangles(s);
+  const std::vector<int>& start = vtri.start;
+  std::vector<Wedge> wedges(vtri.items.size());
+  for (int v = 0; v < nv; ++v) {
+    int k = -1;
+    for (int i = start[v]; i < start[v + 1]; ++i) {
+      const int f = vtri.items[i];
+      const Triangle& t = s.triangles[f];
+      k = (i > start[v] && vtri.items[i - 1] == f) ? k + 1 : 0;
+      while (t[k] != v) ++k;
+      wedges[i] = {t[(k + 1) % 3], t[(k + 2) % 3], f};
+    }
   }
 
   for (int v = 0; v < nv; ++v) {

@@ -148,6 +148,20 @@ ResolvedGrowthLaw resolve_growth_law(const GrowthLaw& law) {
   return out;
 }
 
+GrowthLaw with_default_first_height(GrowthLaw law, double wall_diagonal, std::string* note) {
+  note->clear();
+  if (law.first_height != 0.0 || law.last_height != 0.0 || law.total_thickness != 0.0) return law;
+  if (law.relative)
+    throw InputError("growth law: relative heights need first_height, total_thickness or last_height");
+  law.first_height = kDefaultFirstHeightFraction * wall_diagonal;
+  static_assert(kDefaultFirstHeightFraction == 2e-4, "the note quotes the fraction as written");
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "no height given: first-height = %.6g (2e-4 x bounding-box diagonal)",
+                law.first_height);
+  *note = buf;
+  return law;
+}
+
 std::string describe_growth_law(const ResolvedGrowthLaw& law) {
   char buf[256];
   std::snprintf(buf, sizeof buf, "N=%d first=%.6g last=%.6g total=%.6g ratio=%.6g (%s)", law.layers,

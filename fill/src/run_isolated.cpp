@@ -9,9 +9,10 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cstring>
 #include <exception>
+
+#include "blayer/core/stopwatch.h"
 
 namespace blayer {
 namespace {
@@ -78,13 +79,95 @@ std::string describe_status(int status) {
   return "child process ended abnormally";
 }
 
+// Appends what can be read from fd now, without blocking.
+void drain(int fd, std::string& received) {
+  char buffer[1 << 16];
+  ::fcntl(fd, F_SETFL, O_NONBLOCK);
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n > 0) {
+      received.append(buffer, static_cast<std::size_t>(n));
+    } else if (n < 0 && errno == EINTR) {
+      continue;
+    } else {
+      break;
+    }
+  }
+}
+
+struct ChildEnd {
+  std::string received;  // everything the child wrote
+  int status = 0;        // waitpid status
+  bool timed_out = false;
+};
+
+// Reads the child's message until end of file, its exit or the timeout (then it is
+// killed), and reaps it.
+ChildEnd wait_for_child(int fd, pid_t pid, double timeout_seconds) {
+  const Stopwatch clock;
+  ChildEnd end;
+  char buffer[1 << 16];
+  bool exited = false;
+  for (bool eof = false; !eof;) {
+    int wait_ms = kPollMilliseconds;
+    if (timeout_seconds > 0.0)
+      wait_ms = std::max(0, std::min(wait_ms, static_cast<int>((timeout_seconds - clock.seconds()) * 1000.0)));
+    pollfd pfd{fd, POLLIN, 0};
+    const int r = ::poll(&pfd, 1, wait_ms);
+    if (r < 0 && errno != EINTR) break;
+    if (r > 0) {
+      const ssize_t n = ::read(fd, buffer, sizeof buffer);
+      if (n > 0) {
+        end.received.append(buffer, static_cast<std::size_t>(n));
+        continue;
+      }
+      if (n == 0) eof = true;
+      if (n < 0 && errno != EINTR && errno != EAGAIN) break;
+    }
+    if (::waitpid(pid, &end.status, WNOHANG) == pid) {
+      exited = true;
+      drain(fd, end.received);  // what the child wrote before it exited
+      break;
+    }
+    if (timeout_seconds > 0.0 && clock.seconds() > timeout_seconds) {
+      end.timed_out = true;
+      ::kill(pid, SIGKILL);
+      break;
+    }
+  }
+  if (!exited) {
+    while (::waitpid(pid, &end.status, 0) < 0 && errno == EINTR) {
+    }
+  }
+  return end;
+}
+
+IsolatedOutcome parse_outcome(const ChildEnd& end) {
+  if (!WIFEXITED(end.status) || end.received.empty()) throw ChildProcessError(describe_status(end.status));
+  IsolatedOutcome out;
+  const int code = WEXITSTATUS(end.status);
+  const char tag = end.received[0];
+  if (tag == kTagOk && code == 0) {
+    out.kind = IsolatedOutcome::Kind::kOk;
+    out.data = end.received.substr(1);
+  } else if (tag == kTagInt && code == 2 && end.received.size() == 1 + sizeof(int)) {
+    out.kind = IsolatedOutcome::Kind::kThrewInt;
+    std::memcpy(&out.thrown_int, end.received.data() + 1, sizeof(int));
+  } else if (tag == kTagException && code == 3) {
+    out.kind = IsolatedOutcome::Kind::kThrewException;
+    out.data = end.received.substr(1);
+  } else {
+    throw ChildProcessError(describe_status(end.status));
+  }
+  return out;
+}
+
 }  // namespace
 
 IsolatedOutcome run_isolated(const std::function<std::string()>& work, double timeout_seconds) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0)
     throw ChildProcessError(std::string("cannot create a pipe: ") + std::strerror(errno));
-
   const pid_t pid = ::fork();
   if (pid < 0) {
     const int err = errno;
@@ -97,88 +180,12 @@ IsolatedOutcome run_isolated(const std::function<std::string()>& work, double ti
     child_main(fds[1], work);
   }
   ::close(fds[1]);
-
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  std::string received;
-  char buffer[1 << 16];
-  bool eof = false;
-  bool exited = false;
-  int status = 0;
-  bool timed_out = false;
-
-  while (!eof) {
-    int wait_ms = kPollMilliseconds;
-    if (timeout_seconds > 0.0) {
-      const double left =
-          timeout_seconds - std::chrono::duration<double>(Clock::now() - start).count();
-      wait_ms = std::max(0, std::min(wait_ms, static_cast<int>(left * 1000.0)));
-    }
-    pollfd pfd{fds[0], POLLIN, 0};
-    const int r = ::poll(&pfd, 1, wait_ms);
-    if (r < 0 && errno != EINTR) break;
-    if (r > 0) {
-      const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-      if (n > 0) {
-        received.append(buffer, static_cast<std::size_t>(n));
-        continue;
-      }
-      if (n == 0) eof = true;
-      if (n < 0 && errno != EINTR && errno != EAGAIN) break;
-    }
-    if (!exited) {
-      const pid_t w = ::waitpid(pid, &status, WNOHANG);
-      if (w == pid) {
-        exited = true;
-        // Drain what the child wrote before it exited, without blocking.
-        ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
-        for (;;) {
-          const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-          if (n > 0) {
-            received.append(buffer, static_cast<std::size_t>(n));
-          } else if (n < 0 && errno == EINTR) {
-            continue;
-          } else {
-            break;
-          }
-        }
-        break;
-      }
-    }
-    if (timeout_seconds > 0.0 &&
-        std::chrono::duration<double>(Clock::now() - start).count() > timeout_seconds) {
-      timed_out = true;
-      ::kill(pid, SIGKILL);
-      break;
-    }
-  }
+  const ChildEnd end = wait_for_child(fds[0], pid, timeout_seconds);
   ::close(fds[0]);
-  if (!exited) {
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
-  }
-
-  if (timed_out)
+  if (end.timed_out)
     throw ChildProcessError("child process timed out after " + std::to_string(timeout_seconds) +
                             " s and was killed (signal " + std::to_string(SIGKILL) + ")");
-  if (!WIFEXITED(status) || received.empty()) throw ChildProcessError(describe_status(status));
-
-  IsolatedOutcome out;
-  const int code = WEXITSTATUS(status);
-  const char tag = received[0];
-  if (tag == kTagOk && code == 0) {
-    out.kind = IsolatedOutcome::Kind::kOk;
-    out.data = received.substr(1);
-  } else if (tag == kTagInt && code == 2 && received.size() == 1 + sizeof(int)) {
-    out.kind = IsolatedOutcome::Kind::kThrewInt;
-    std::memcpy(&out.thrown_int, received.data() + 1, sizeof(int));
-  } else if (tag == kTagException && code == 3) {
-    out.kind = IsolatedOutcome::Kind::kThrewException;
-    out.data = received.substr(1);
-  } else {
-    throw ChildProcessError(describe_status(status));
-  }
-  return out;
+  return parse_outcome(end);
 }
 
 }  // namespace blayer

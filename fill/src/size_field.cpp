@@ -4,6 +4,8 @@
 #include <limits>
 #include <numeric>
 
+#include "blayer/core/assert.h"
+
 namespace blayer::fill_detail {
 namespace {
 
@@ -23,6 +25,8 @@ double box_distance(const Vec3& x, const Vec3& lo, const Vec3& hi) {
 
 SizeField::SizeField(std::vector<Vec3> sites, std::vector<double> sizes, double slope)
     : sites_(std::move(sites)), sizes_(std::move(sizes)), slope_(slope) {
+  BLAYER_ASSERT_MSG(!sites_.empty() && sites_.size() == sizes_.size(), "one size per site, at least one site");
+  BLAYER_ASSERT(slope_ >= 0.0);
   order_.resize(sites_.size());
   std::iota(order_.begin(), order_.end(), 0);
   nodes_.reserve(2 * sites_.size() / kLeafSize + 2);

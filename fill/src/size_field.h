@@ -3,6 +3,7 @@
 // `slope` per unit length. Exact minimum via a k-d tree with branch and bound.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "blayer/core/vec3.h"
@@ -11,10 +12,14 @@ namespace blayer::fill_detail {
 
 class SizeField {
  public:
-  // sites and sizes have equal, non-zero length; slope >= 0.
+  // sites and sizes have equal, non-zero length; slope >= 0 (BLAYER_ASSERT).
   SizeField(std::vector<Vec3> sites, std::vector<double> sizes, double slope);
 
   double operator()(const Vec3& x) const;
+
+  // Smallest and largest h_i over the sites.
+  double min_site_size() const { return *std::min_element(sizes_.begin(), sizes_.end()); }
+  double max_site_size() const { return *std::max_element(sizes_.begin(), sizes_.end()); }
 
  private:
   struct Node {

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <sstream>
 #include <unordered_map>
 
+#include "blayer/core/assert.h"
+#include "blayer/core/degenerate_triangle.h"
+#include "blayer/core/edge_topology.h"
 #include "blayer/core/errors.h"
+#include "blayer/core/surface_components.h"
 #include "blayer/core/vertex_fans.h"
 
 namespace blayer {
@@ -57,33 +60,27 @@ std::string fmt_point(const Vec3& p) {
   return os.str();
 }
 
-std::string describe(int tri, int face, const Triangle& t, bool triangulated) {
-  std::ostringstream os;
-  os << "triangle " << tri;
-  if (triangulated) os << " (from face " << face << ")";
-  os << " [vertices " << t[0] << ", " << t[1] << ", " << t[2] << "]";
-  return os.str();
-}
+// How a triangle is named in messages: its index, the file's face it came from when
+// polygons were split, and its vertices.
+struct TriangleNames {
+  const TriSurface& surface;
+  const std::vector<int>& source_face;
+  bool triangulated = false;
 
-std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
+  std::string operator()(int tri) const {
+    const Triangle& t = surface.triangles[tri];
+    std::ostringstream os;
+    os << "triangle " << tri;
+    if (triangulated) os << " (from face " << source_face[tri] << ")";
+    os << " [vertices " << t[0] << ", " << t[1] << ", " << t[2] << "]";
+    return os.str();
+  }
+};
 
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
 
-}  // namespace
-
-PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file, const PrepareOptions& opt,
-                                const Tolerances& tol) {
-  ProblemList problems(file);
-  PreparedSurface out;
+// Face sizes and vertex indices, before anything is built from them.
+void check_faces(const PolygonSoup& soup, ProblemList& problems) {
   const int nv = static_cast<int>(soup.points.size());
-
-  if (soup.faces.empty()) throw InputError(file + ": the file contains no faces");
   for (int i = 0; i < nv; ++i)
     if (!is_finite(soup.points[i]))
       problems.add("non-finite coordinates", "vertex " + std::to_string(i) + " at " + fmt_point(soup.points[i]));
@@ -108,13 +105,13 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
       }
     }
   }
-  problems.raise_if_any();
+}
 
-  // Polygons are split as fans from their first vertex; a non-convex polygon may give
-  // degenerate or folded triangles, which the checks below then report.
-  TriSurface& s = out.surface;
+// Polygons are split as fans from their first vertex; a non-convex polygon may give
+// degenerate or folded triangles, which the later checks then report. Returns the
+// number of polygons split; source_face[t] is the file's face of triangle t.
+int triangulate(const PolygonSoup& soup, TriSurface& s, std::vector<int>& source_face) {
   s.points = soup.points;
-  std::vector<int> source_face;
   int n_polygons = 0;
   for (int f = 0; f < static_cast<int>(soup.faces.size()); ++f) {
     const auto& face = soup.faces[f];
@@ -124,24 +121,14 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
       source_face.push_back(f);
     }
   }
-  const bool triangulated = n_polygons > 0;
-  if (triangulated)
-    out.notes.push_back("triangulated " + std::to_string(n_polygons) + " polygons into triangles (" +
-                        std::to_string(s.triangles.size()) + " triangles in all); triangle numbers below refer to "
-                        "the triangulated surface");
+  return n_polygons;
+}
+
+void check_triangles(const TriSurface& s, const TriangleNames& name, const Tolerances& tol, ProblemList& problems) {
   const int nt = static_cast<int>(s.triangles.size());
-  auto tri_name = [&](int t) { return describe(t, source_face[t], s.triangles[t], triangulated); };
-
-  for (int t = 0; t < nt; ++t) {
-    const Triangle& tr = s.triangles[t];
-    double longest2 = 0.0;
-    for (int k = 0; k < 3; ++k)
-      longest2 = std::max(longest2, norm2(s.points[tr[(k + 1) % 3]] - s.points[tr[k]]));
-    const double twice_area = norm(triangle_area_vector(s, tr));
-    if (!(twice_area > tol.degenerate_relative_height * longest2))
-      problems.add("degenerate (zero-area) triangles", tri_name(t));
-  }
-
+  for (int t = 0; t < nt; ++t)
+    if (is_degenerate_triangle(s, s.triangles[t], tol.degenerate_relative_height))
+      problems.add("degenerate (zero-area) triangles", name(t));
   // Duplicates: sort the triangles by their sorted vertex triples and compare neighbours.
   std::vector<std::pair<Triangle, int>> keyed(nt);
   for (int t = 0; t < nt; ++t) {
@@ -151,82 +138,51 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
   std::sort(keyed.begin(), keyed.end());
   for (int i = 1; i < nt; ++i)
     if (keyed[i].first == keyed[i - 1].first)
-      problems.add("duplicate triangles", tri_name(keyed[i].second) + " repeats " + tri_name(keyed[i - 1].second));
+      problems.add("duplicate triangles", name(keyed[i].second) + " repeats " + name(keyed[i - 1].second));
+}
 
-  // Edge incidence: for every undirected edge the triangles using it and the direction.
-  struct EdgeUse {
-    int tri[2] = {-1, -1};
-    int from[2] = {-1, -1};
-    int count = 0;
-  };
-  std::unordered_map<std::uint64_t, EdgeUse> edges;
-  edges.reserve(static_cast<std::size_t>(nt) * 2);
-  for (int t = 0; t < nt; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
-      EdgeUse& e = edges[edge_key(a, b)];
-      if (e.count < 2) {
-        e.tri[e.count] = t;
-        e.from[e.count] = a;
-      }
-      ++e.count;
-    }
+// Edges in (lo, hi) order, so the problems are listed in the same order every run.
+void check_edges(const EdgeTopology& edges, const TriangleNames& name, bool allow_open, ProblemList& problems) {
+  for (const SurfaceEdge& e : edges.edges) {
+    const std::string edge = "edge (" + std::to_string(e.lo) + ", " + std::to_string(e.hi) + ")";
+    if (e.kind == EdgeKind::kNonManifold)
+      problems.add("non-manifold edges", edge + " is shared by " + std::to_string(e.n_uses) + " triangles");
+    else if (e.kind == EdgeKind::kBoundary && !allow_open)
+      problems.add("open boundary edges (holes)", edge + " of " + name(e.triangle[0]) + " has no neighbour");
+    else if (e.kind == EdgeKind::kInconsistent)
+      problems.add("inconsistent orientation",
+                   name(e.triangle[0]) + " and " + name(e.triangle[1]) + " run the same way along " + edge);
   }
-  std::vector<int> parent(nt);
-  std::iota(parent.begin(), parent.end(), 0);
-  int n_boundary_edges = 0;
-  for (const auto& [key, e] : edges) {
-    const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
-    const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
-    if (e.count > 2) {
-      problems.add("non-manifold edges", edge + " is shared by " + std::to_string(e.count) + " triangles");
-    } else if (e.count == 1) {
-      ++n_boundary_edges;
-      if (!opt.allow_open)
-        problems.add("open boundary edges (holes)", edge + " of " + tri_name(e.tri[0]) + " has no neighbour");
-    } else {
-      if (e.from[0] == e.from[1])
-        problems.add("inconsistent orientation",
-                     tri_name(e.tri[0]) + " and " + tri_name(e.tri[1]) + " run the same way along " + edge);
-      parent[find_root(parent, e.tri[0])] = find_root(parent, e.tri[1]);
-    }
-  }
-  problems.raise_if_any();
+}
 
-  std::vector<char> used(nv, 0);
+void check_vertices(const TriSurface& s, ProblemList& problems) {
+  std::vector<char> used(s.points.size(), 0);
   for (const Triangle& t : s.triangles)
     for (int v : t) used[v] = 1;
-  for (int v = 0; v < nv; ++v)
+  for (std::size_t v = 0; v < used.size(); ++v)
     if (!used[v]) problems.add("unused vertices", "vertex " + std::to_string(v) + " is used by no triangle");
   const VertexFans fans = build_vertex_fans(s);
   for (int v : fans.non_manifold)
     problems.add("non-manifold vertices",
                  "vertex " + std::to_string(v) + " at " + fmt_point(s.points[v]) +
                      ": its triangles form more than one fan (surfaces touching at a point)");
-  problems.raise_if_any();
+}
 
-  // Orientation per connected component.
-  std::vector<int> comp_of_root(nt, -1);
-  std::vector<int> comp(nt);
-  for (int t = 0; t < nt; ++t) {
-    const int r = find_root(parent, t);
-    if (comp_of_root[r] < 0) comp_of_root[r] = out.n_components++;
-    comp[t] = comp_of_root[r];
-  }
+// Flips each component as needed so that its normals point into the fluid, and says so
+// in out.notes. Precondition: the surface passed every other check (edge-manifold,
+// consistently oriented).
+void orient_components(const EdgeTopology& edges, const PrepareOptions& opt, const Tolerances& tol,
+                       ProblemList& problems, PreparedSurface& out) {
+  TriSurface& s = out.surface;
+  BLAYER_ASSERT(edges.n_non_manifold == 0 && edges.n_inconsistent == 0);
+  const SurfaceComponents comps = edge_connected_components(s, edges);
+  out.n_components = comps.count;
+  const std::vector<int>& comp = comps.of_triangle;
   std::vector<char> comp_open(out.n_components, 0);
-  for (const auto& [key, e] : edges)
-    if (e.count == 1) comp_open[comp[e.tri[0]]] = 1;
-  std::vector<double> volume(out.n_components, 0.0);
-  Vec3 centre{0, 0, 0};
-  for (const Vec3& p : s.points) centre += p;
-  centre = centre / static_cast<double>(nv);
-  for (int t = 0; t < nt; ++t) {
-    const Triangle& tr = s.triangles[t];
-    const Vec3 a = s.points[tr[0]] - centre, b = s.points[tr[1]] - centre, c = s.points[tr[2]] - centre;
-    volume[comp[t]] += dot(a, cross(b, c)) / 6.0;
-  }
+  for (const SurfaceEdge& e : edges.edges)
+    if (e.kind == EdgeKind::kBoundary) comp_open[comp[e.triangle[0]]] = 1;
+  const std::vector<double> volume = component_signed_volumes(s, comps);
   const double diag = bounding_box_diagonal(s.points);
-  out.closed = n_boundary_edges == 0;
   std::vector<char> flip(out.n_components, 0);
   for (int c = 0; c < out.n_components; ++c) {
     if (comp_open[c]) {
@@ -243,7 +199,7 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
     flip[c] = (opt.side == Side::kOutward) != points_outward;
   }
   problems.raise_if_any();
-  for (int t = 0; t < nt; ++t)
+  for (std::size_t t = 0; t < s.triangles.size(); ++t)
     if (flip[comp[t]]) std::swap(s.triangles[t][1], s.triangles[t][2]);
   for (int c = 0; c < out.n_components; ++c) {
     if (!flip[c]) continue;
@@ -255,8 +211,38 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
                           (volume[c] > 0 ? "outward" : "inward") + "; flipped so that layers grow " +
                           (opt.side == Side::kOutward ? "outward (external flow)" : "inward (internal flow)"));
   }
+}
+
+}  // namespace
+
+PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file, const PrepareOptions& opt,
+                                const Tolerances& tol) {
+  ProblemList problems(file);
+  if (soup.faces.empty()) throw InputError(file + ": the file contains no faces");
+  check_faces(soup, problems);
+  problems.raise_if_any();
+
+  PreparedSurface out;
+  std::vector<int> source_face;
+  const int n_polygons = triangulate(soup, out.surface, source_face);
+  const TriSurface& s = out.surface;
+  const TriangleNames name{s, source_face, n_polygons > 0};
+  if (n_polygons > 0)
+    out.notes.push_back("triangulated " + std::to_string(n_polygons) + " polygons into triangles (" +
+                        std::to_string(s.triangles.size()) + " triangles in all); triangle numbers below refer to "
+                        "the triangulated surface");
+
+  check_triangles(s, name, tol, problems);
+  const EdgeTopology edges = build_edge_topology(s);
+  check_edges(edges, name, opt.allow_open, problems);
+  problems.raise_if_any();
+  check_vertices(s, problems);
+  problems.raise_if_any();
+
+  orient_components(edges, opt, tol, problems, out);
+  out.closed = edges.n_boundary == 0;
   if (!out.closed)
-    out.notes.push_back("open surface (" + std::to_string(n_boundary_edges) +
+    out.notes.push_back("open surface (" + std::to_string(edges.n_boundary) +
                         " boundary edges): layers grow on the side the triangles' normals point to");
   return out;
 }

@@ -76,9 +76,10 @@ vtkSmartPointer<vtkPoints> to_vtk_points(const std::vector<Vec3>& pts) {
 
 template <class Writer>
 void write_atomically(Writer* w, vtkDataObject* data, const std::string& path) {
-  AtomicFile file(path);
+  AtomicOutputs file;
+  const std::string temp = file.stage(path);
   w->SetInputData(data);
-  w->SetFileName(file.temp_path().c_str());
+  w->SetFileName(temp.c_str());
   w->SetDataModeToAppended();
   w->EncodeAppendedDataOff();
   // LZ4 compresses several times faster than zlib for a somewhat larger file; on a

@@ -236,6 +236,52 @@ TEST(CliExtrude, HybridBoundaryFileMarksWallAndFarfield) {
   EXPECT_EQ(wall, 972);  // the cube's wall triangles
   EXPECT_GE(farfield, 12);  // at least two triangles per box face
   EXPECT_EQ(wall + farfield, marker->GetNumberOfTuples());
+  // Every triangle faces out of the domain, so the divergence theorem gives the volume
+  // of the box less the unit cube: positive, and at the wall the normals point into the
+  // cube (towards its centre, the mean of its corners).
+  vtkPolyData* b = reader->GetOutput();
+  double centre[3] = {0, 0, 0};
+  int n_corners = 0;
+  for (vtkIdType i = 0; i < b->GetNumberOfCells(); ++i) {
+    if (marker->GetTuple1(i) != 1) continue;
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    b->GetCellPoints(i, n, ids);
+    for (int k = 0; k < 3; ++k, ++n_corners)
+      for (int a = 0; a < 3; ++a) centre[a] += b->GetPoint(ids[k])[a];
+  }
+  for (double& c : centre) c /= n_corners;
+  double volume = 0.0;
+  int wall_into_body = 0;
+  for (vtkIdType i = 0; i < b->GetNumberOfCells(); ++i) {
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    b->GetCellPoints(i, n, ids);
+    double p[3][3];
+    for (int k = 0; k < 3; ++k) {
+      b->GetPoint(ids[k], p[k]);
+      for (int a = 0; a < 3; ++a) p[k][a] -= centre[a];
+    }
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    volume += (p[0][0] * c[0] + p[0][1] * c[1] + p[0][2] * c[2]) / 6.0;
+    const double centre_dot = (p[0][0] + p[1][0] + p[2][0]) * c[0] + (p[0][1] + p[1][1] + p[2][1]) * c[1] +
+                              (p[0][2] + p[1][2] + p[2][2]) * c[2];
+    if (marker->GetTuple1(i) == 1 && centre_dot < 0) ++wall_into_body;
+  }
+  EXPECT_EQ(wall_into_body, 972);
+  EXPECT_GT(volume, 1.0);
+}
+
+TEST(CliExtrude, NoHeightGivenUsesTheDefaultFirstHeightAndSaysSo) {
+  TempDir dir;
+  const std::string cube = std::string(BLAYER_CASES_DIR) + "/003_cube/surface.stl";
+  const auto r = run_blayer("extrude " + cube + " -o " + dir.file("m.vtu") + " --layers 2", dir.file(""));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("note: no height given: first-height = 0.00034641 (2e-4 x bounding-box diagonal)"),
+            std::string::npos)
+      << r.out;
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <iostream>
 
 #include "blayer/core/errors.h"

@@ -180,5 +180,24 @@ TEST(PrepareSurface, RejectsAFlatClosedSurface) {
   expect_rejected(s, "enclosing no volume", "component 0");
 }
 
+// Edge problems are listed by edge (lower point, then higher point), so one input
+// gives one message on every run and platform.
+TEST(PrepareSurface, ListsEdgeProblemsInEdgeOrder) {
+  PolygonSoup s = tetra();
+  s.faces.erase(s.faces.begin() + 1);  // triangle (0, 1, 3) missing: three open edges
+  try {
+    prepare_surface(s, "body.stl", {});
+    FAIL() << "accepted a surface with a hole";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    const std::size_t a = msg.find("edge (0, 1)"), b = msg.find("edge (0, 3)"), c = msg.find("edge (1, 3)");
+    ASSERT_NE(a, std::string::npos) << msg;
+    ASSERT_NE(b, std::string::npos) << msg;
+    ASSERT_NE(c, std::string::npos) << msg;
+    EXPECT_LT(a, b) << msg;
+    EXPECT_LT(b, c) << msg;
+  }
+}
+
 }  // namespace
 }  // namespace blayer

@@ -53,6 +53,18 @@ struct ResolvedGrowthLaw {
   std::vector<double> heights;
 };
 
+// First-layer height when no height is given at all: this fraction of the wall's
+// bounding-box diagonal, small enough for wall-resolved RANS on typical models.
+constexpr double kDefaultFirstHeightFraction = 2e-4;
+
+// A law with no height given (first_height, last_height and total_thickness all 0)
+// gets first_height = kDefaultFirstHeightFraction x wall_diagonal, and *note says so,
+// e.g. "no height given: first-height = 0.00034641 (2e-4 x bounding-box diagonal)".
+// A law with any height given is returned unchanged and *note is cleared. Throws
+// InputError for relative heights with no height given (the default is a length, not
+// a multiple of the edge length).
+GrowthLaw with_default_first_height(GrowthLaw law, double wall_diagonal, std::string* note);
+
 // Resolves the law. Throws InputError (message names the fields and what to change)
 // when N is out of [1, kMaxLayers], a value is negative or not finite, fewer or more
 // than two quantities are given, or the given pair admits no positive ratio

@@ -16,6 +16,8 @@
 //             component must enclose negative volume (an outer wall whose normals point
 //             into the pipe); components with positive volume are inner bodies and get
 //             hole points.
+//             Components are edge-connected (blayer/core/surface_components.h), so
+//             bodies that touch at a point are separate bodies with a hole point each.
 //
 // PLC handed to TetGen: envelope triangles (facet marker 1) and farfield triangles
 // (marker 2) as one-polygon facets, one hole point per body. A hole point sits behind
@@ -149,7 +151,8 @@ inline constexpr int kEnvelopeMarker = 1;
 inline constexpr int kFarfieldMarker = 2;
 
 // Fills the region selected by opt.region with tetrahedra; see the file comment for
-// contract, switches and failure behaviour.
+// contract, switches and failure behaviour. blayer/fill/hybrid_mesh.h joins the result
+// to the layer mesh and builds the marked boundary of the whole mesh.
 FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt);
 
 }  // namespace blayer

@@ -1,0 +1,67 @@
+#include "blayer/fill/hybrid_mesh.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "blayer/core/assert.h"
+
+namespace blayer {
+
+std::vector<std::int64_t> append_fill(const FillResult& fill, const std::vector<std::int64_t>& envelope_point_ids,
+                                      VolumeMesh* mesh) {
+  const std::size_t n_envelope = envelope_point_ids.size();
+  BLAYER_ASSERT_MSG(static_cast<std::int64_t>(n_envelope) == fill.stats.n_envelope_points,
+                    "one layer-mesh point per envelope point of the fill");
+  std::vector<std::int64_t> to_mesh(fill.tets.points.size());
+  for (std::size_t i = 0; i < n_envelope; ++i) {
+    const std::int64_t id = envelope_point_ids[i];
+    BLAYER_ASSERT(id >= 0 && id < static_cast<std::int64_t>(mesh->points.size()));
+    BLAYER_ASSERT_MSG(mesh->points[id] == fill.tets.points[i], "the fill's envelope points are the layers' tops");
+    to_mesh[i] = id;
+  }
+  for (std::size_t i = n_envelope; i < fill.tets.points.size(); ++i) {
+    to_mesh[i] = static_cast<std::int64_t>(mesh->points.size());
+    mesh->points.push_back(fill.tets.points[i]);
+  }
+  const std::size_t n_layer_cells = mesh->n_cells();
+  for (std::size_t c = 0; c < fill.tets.n_cells(); ++c) {
+    BLAYER_ASSERT(fill.tets.cell_types[c] == CellType::kTet);
+    std::int64_t nodes[4];
+    for (int k = 0; k < 4; ++k) nodes[k] = to_mesh[fill.tets.connectivity[fill.tets.offsets[c] + k]];
+    mesh->add_cell(CellType::kTet, nodes);
+  }
+  for (DataArray& a : mesh->point_data) a.values.resize(mesh->points.size() * a.n_components, 0.0);
+  for (DataArray& a : mesh->cell_data)
+    a.values.resize(mesh->n_cells() * a.n_components, a.name == "layer" ? -1.0 : 0.0);
+  DataArray region{"region", 1, true, std::vector<double>(mesh->n_cells(), 1.0)};
+  std::fill(region.values.begin(), region.values.begin() + n_layer_cells, 0.0);
+  mesh->cell_data.push_back(std::move(region));
+  return to_mesh;
+}
+
+MarkedBoundary hybrid_boundary(const VolumeMesh& mesh, const TriSurface& wall, const FillResult& fill,
+                               const std::vector<std::int64_t>& fill_to_mesh) {
+  BLAYER_ASSERT(wall.points.size() <= mesh.points.size());
+  BLAYER_ASSERT_MSG(std::equal(wall.points.begin(), wall.points.end(), mesh.points.begin()),
+                    "the wall points are the mesh's first points");
+  BLAYER_ASSERT_MSG(fill_to_mesh.size() == fill.tets.points.size(), "fill_to_mesh comes from append_fill");
+  BLAYER_ASSERT(fill.boundary_marker.size() == fill.boundary.triangles.size());
+  MarkedBoundary b;
+  b.surface.points = mesh.points;
+  // The wall's triangles face the fluid, i.e. into the domain: reversed. The fill winds
+  // its farfield triangles into the domain too: reversed as well.
+  for (const Triangle& t : wall.triangles) {
+    b.surface.triangles.push_back({t[0], t[2], t[1]});
+    b.marker.push_back(static_cast<int>(BoundaryMarker::kWall));
+  }
+  for (std::size_t i = 0; i < fill.boundary.triangles.size(); ++i) {
+    if (fill.boundary_marker[i] != kFarfieldMarker) continue;
+    const Triangle& t = fill.boundary.triangles[i];
+    b.surface.triangles.push_back({static_cast<int>(fill_to_mesh[t[0]]), static_cast<int>(fill_to_mesh[t[2]]),
+                                   static_cast<int>(fill_to_mesh[t[1]])});
+    b.marker.push_back(static_cast<int>(BoundaryMarker::kFarfield));
+  }
+  return b;
+}
+
+}  // namespace blayer
