@@ -17,6 +17,8 @@ packages=(
   nlohmann-json3-dev        # reports
   libcgal-dev libgmp-dev libmpfr-dev  # exact orient3d
   zlib1g-dev
+  libxml2-utils             # tests: xmllint checks that every .vtu/.vtp is well-formed XML
+  python3-meshio            # tests: meshio (run by /usr/bin/python3) as an independent .vtu reader
 )
 if [[ "${1:-}" == "--extras" ]]; then
   packages+=(gmsh python3-vtk9 xvfb xauth bc time)

@@ -1,13 +1,21 @@
 #include <gtest/gtest.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkCellValidator.h>
+#include <vtkDoubleArray.h>
 #include <vtkGenericCell.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
+#include <vtkXMLUnstructuredGridWriter.h>
 
 #include "blayer/core/errors.h"
 #include "blayer/io/vtk_io.h"
 #include "blayer/quality/cell_validity.h"
+#include "mixed_mesh.h"
 #include "temp_dir.h"
 
 namespace blayer {
@@ -71,6 +79,94 @@ TEST(VtkIo, VtuRoundTripKeepsPointsCellsAndArrays) {
   const DataArray* normal = back.mesh.find_point_array("normal");
   ASSERT_NE(normal, nullptr);
   EXPECT_EQ(normal->n_components, 3);
+}
+
+void expect_same_mesh(const VolumeMesh& back, const VolumeMesh& m) {
+  EXPECT_EQ(back.points, m.points);
+  EXPECT_EQ(back.cell_types, m.cell_types);
+  EXPECT_EQ(back.offsets, m.offsets);
+  EXPECT_EQ(back.connectivity, m.connectivity);
+}
+
+void expect_round_trip_keeps_every_cell_type_and_array_kind(const VtkWriteOptions& options) {
+  TempDir dir;
+  const VolumeMesh m = testing::mixed_mesh();
+  write_vtu(m, dir.file("m.vtu"), options);
+  const VolumeMeshFile back = read_volume_mesh(dir.file("m.vtu"));
+  EXPECT_EQ(back.n_skipped_lower_dimension, 0);
+  expect_same_mesh(back.mesh, m);
+  for (const DataArray& a : m.point_data) {
+    const DataArray* b = back.mesh.find_point_array(a.name);
+    ASSERT_NE(b, nullptr) << a.name;
+    EXPECT_EQ(b->n_components, a.n_components) << a.name;
+    EXPECT_EQ(b->integer, a.integer) << a.name;
+    EXPECT_EQ(b->values, a.values) << a.name;
+  }
+  for (const DataArray& a : m.cell_data) {
+    const DataArray* b = back.mesh.find_cell_array(a.name);
+    ASSERT_NE(b, nullptr) << a.name;
+    EXPECT_EQ(b->integer, a.integer) << a.name;
+    ASSERT_EQ(b->values.size(), a.values.size()) << a.name;
+    // Float32 arrays come back rounded to float, integer and Float64 arrays exactly.
+    for (std::size_t i = 0; i < a.values.size(); ++i)
+      EXPECT_EQ(b->values[i], a.single_precision ? static_cast<double>(static_cast<float>(a.values[i])) : a.values[i])
+          << a.name << "[" << i << "]";
+  }
+}
+
+TEST(VtkIo, VtuRoundTripKeepsEveryCellTypeAndArrayKind) {
+  expect_round_trip_keeps_every_cell_type_and_array_kind(VtkWriteOptions{});
+}
+
+TEST(VtkIo, Lz4VtuRoundTripKeepsEveryCellTypeAndArrayKind) {
+  expect_round_trip_keeps_every_cell_type_and_array_kind(VtkWriteOptions{VtkCompressor::kLz4});
+}
+
+// Files written before the output became inline base64: appended raw binary (not XML
+// that a strict parser accepts), LZ4-compressed, 64-bit headers. VTK's reader still reads
+// them, and so must read_volume_mesh.
+void write_appended_raw_lz4(const VolumeMesh& m, const std::string& path) {
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (const Vec3& p : m.points) points->InsertNextPoint(p.data());
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(points);
+  grid->AllocateExact(static_cast<vtkIdType>(m.n_cells()), static_cast<vtkIdType>(m.connectivity.size()));
+  for (std::size_t c = 0; c < m.n_cells(); ++c) {
+    std::vector<vtkIdType> ids(m.connectivity.begin() + m.offsets[c], m.connectivity.begin() + m.offsets[c + 1]);
+    grid->InsertNextCell(static_cast<int>(m.cell_types[c]), static_cast<vtkIdType>(ids.size()), ids.data());
+  }
+  vtkNew<vtkIntArray> layer;
+  layer->SetName("layer");
+  for (std::size_t c = 0; c < m.n_cells(); ++c) layer->InsertNextValue(static_cast<int>(m.find_cell_array("layer")->values[c]));
+  grid->GetCellData()->AddArray(layer);
+  vtkNew<vtkDoubleArray> normal;
+  normal->SetName("normal");
+  normal->SetNumberOfComponents(3);
+  for (double v : m.find_point_array("normal")->values) normal->InsertNextValue(v);
+  grid->GetPointData()->AddArray(normal);
+  vtkNew<vtkXMLUnstructuredGridWriter> w;
+  w->SetInputData(grid);
+  w->SetFileName(path.c_str());
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
+  w->SetCompressorTypeToLZ4();
+  w->SetHeaderTypeToUInt64();
+  ASSERT_EQ(w->Write(), 1);
+}
+
+TEST(VtkIo, ReadsOlderVtuWithAppendedRawLz4Data) {
+  TempDir dir;
+  const VolumeMesh m = testing::mixed_mesh();
+  write_appended_raw_lz4(m, dir.file("old.vtu"));
+  const VolumeMeshFile back = read_volume_mesh(dir.file("old.vtu"));
+  expect_same_mesh(back.mesh, m);
+  const DataArray* layer = back.mesh.find_cell_array("layer");
+  ASSERT_NE(layer, nullptr);
+  EXPECT_EQ(layer->values, m.find_cell_array("layer")->values);
+  const DataArray* normal = back.mesh.find_point_array("normal");
+  ASSERT_NE(normal, nullptr);
+  EXPECT_EQ(normal->values, m.find_point_array("normal")->values);
 }
 
 TEST(VtkIo, WritingIntoAMissingDirectoryFailsAndLeavesNothing) {
