@@ -44,7 +44,7 @@ EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo) 
   e.mean.assign(nv, 0.0);
   e.shortest.assign(nv, 0.0);
   parallel_vertices(nv, [&](int v) {
-    const int k = nbr.size(v);
+    const int k = nbr.count(v);
     if (k == 0) return;
     double s = 0.0, m = HUGE_VAL;
     for (const int* u = nbr.begin(v); u != nbr.end(v); ++u) {

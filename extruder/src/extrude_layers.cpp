@@ -1,9 +1,9 @@
 #include "blayer/extruder/extrude_layers.h"
 
 #include <algorithm>
-#include <chrono>
 
 #include "blayer/core/errors.h"
+#include "blayer/core/stopwatch.h"
 #include "blayer/extruder/column_heights.h"
 #include "blayer/extruder/column_plan.h"
 #include "blayer/extruder/column_state.h"
@@ -18,14 +18,11 @@ namespace blayer {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 // A column point below its planned height above the wall planes by more than this
 // relative amount was held back by the step-stretch cap (the step formula is exact
 // otherwise; 1e-9 is far above its rounding).
 constexpr double kShortfallTolerance = 1e-9;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 void check_wall(const TriSurface& wall) {
   const int nv = static_cast<int>(wall.points.size());
@@ -44,7 +41,7 @@ std::vector<char> growing(const ColumnState& c) {
 
 ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& params,
                                const std::function<void(int, int)>& progress) {
-  const auto t_start = Clock::now();
+  const Stopwatch total;
   check_extrusion_params(params);
   check_wall(wall);
   ExtrusionResult res;
@@ -54,7 +51,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   rep.n_wall_triangles = static_cast<int>(wall.triangles.size());
 
   // Setup: topology, wall directions, checker trees, column plan.
-  auto t0 = Clock::now();
+  Stopwatch phase;
   const WallTopology topo = build_wall_topology(wall);
   const WallPlanes planes(wall, topo);
   StepDirections dirs = compute_step_directions(wall, topo, topo.used, params);
@@ -65,14 +62,14 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   TriSurface front;
   front.triangles = wall.triangles;
   std::vector<Vec3> next(wall.points.size());
-  rep.t_setup = seconds_since(t0);
+  rep.t_setup = phase.seconds();
 
   for (int k = 0; k < rep.growth.layers; ++k) {
     stop_planned_ends(k, plan, &columns);
     const std::vector<char> active = growing(columns);
     if (std::find(active.begin(), active.end(), 1) == active.end()) break;
 
-    t0 = Clock::now();
+    phase.restart();
     if (k > 0) {
       front.points = columns.top;
       int n_turned = 0;
@@ -84,31 +81,31 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
         end_column_after(&plan, v, k, StopReason::kVisibility);
         columns.stop(v, StopReason::kVisibility);
       }
-    rep.t_normals += seconds_since(t0);
+    rep.t_normals += phase.seconds();
 
-    t0 = Clock::now();
+    phase.restart();
     checker.begin_layer(k, columns.top, columns.layers);
     limit_by_proximity(k, checker.front_rays(), topo, planes, dirs, params, &plan, &columns);
-    rep.t_proximity += seconds_since(t0);
+    rep.t_proximity += phase.seconds();
 
-    t0 = Clock::now();
+    phase.restart();
     const std::vector<char> grows =
         settle_layer(k, wall.triangles, topo, planes, params, &checker, &dirs, &plan, &columns, &next);
-    rep.t_checks += seconds_since(t0);
+    rep.t_checks += phase.seconds();
     for (int v = 0; v < columns.size(); ++v)
       if (grows[v] && planes.height_above(v, next[v]) < (1.0 - kShortfallTolerance) * plan.cumulative(v, k))
         note_limit(&plan, v, StopReason::kStepStretch);
 
-    t0 = Clock::now();
+    phase.restart();
     assembler.commit_layer(k, grows, next, dirs, &columns);
-    rep.t_assembly += seconds_since(t0);
+    rep.t_assembly += phase.seconds();
     if (progress) progress(k + 1, rep.growth.layers);
   }
   // The marching state is no longer needed; freeing it here keeps it out of the peak
   // memory, which is reached while the output arrays are filled.
   checker.release();
 
-  t0 = Clock::now();
+  phase.restart();
   res.mesh = assembler.finish(columns);
   res.envelope.points = columns.top;
   res.envelope.triangles = wall.triangles;
@@ -117,12 +114,12 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   res.stop_reason = columns.reason;
   rep.columns_per_layer = assembler.columns_per_layer();
   rep.min_visibility = rep.columns_per_layer.empty() ? 0.0 : assembler.min_visibility();
-  rep.t_assembly += seconds_since(t0);
+  rep.t_assembly += phase.seconds();
 
-  t0 = Clock::now();
+  phase.restart();
   summarise_extrusion(wall, topo, plan, columns, res.mesh, &rep);
-  rep.t_report = seconds_since(t0);
-  rep.t_total = seconds_since(t_start);
+  rep.t_report = phase.seconds();
+  rep.t_total = total.seconds();
   return res;
 }
 

@@ -120,9 +120,13 @@ void summarise_coverage(const TriSurface& wall, const ColumnState& columns, Extr
   r->area_coverage = area > 0.0 ? area_full / area : 0.0;
 }
 
+// One decimal from 1 % up, two significant digits below, so small shares do not read 0.0 %.
 std::string percent(double x) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * x);
+  if (100.0 * x >= 1.0 || x == 0.0)
+    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * x);
+  else
+    std::snprintf(buf, sizeof buf, "%.2g %%", 100.0 * x);
   return buf;
 }
 

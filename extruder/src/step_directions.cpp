@@ -99,7 +99,7 @@ StepDirections update_step_directions(const TriSurface& front, const WallTopolog
   d.ok.assign(nv, 0);
   std::vector<char> turned(nv, 0);
   parallel_vertices(nv, [&](int v) {
-    if (!active[v] || topo.vertex_triangles.size(v) == 0 || !previous.ok[v]) return;
+    if (!active[v] || topo.vertex_triangles.count(v) == 0 || !previous.ok[v]) return;
     d.visibility[v] = visibility_of(d, topo, v, d.n[v]);
     if (d.visibility[v] >= p.min_visibility) {
       d.ok[v] = 1;
@@ -137,7 +137,7 @@ StepDirections compute_step_directions(const TriSurface& front, const WallTopolo
   d.visibility.assign(nv, 0.0);
   d.ok.assign(nv, 0);
   parallel_vertices(nv, [&](int v) {
-    if (!active[v] || topo.vertex_triangles.size(v) == 0) return;
+    if (!active[v] || topo.vertex_triangles.count(v) == 0) return;
     if (pn.status[v] == NormalStatus::kNoVisibleDirection || !(norm2(d.n[v]) > 0.0) || !is_finite(d.n[v])) return;
     d.visibility[v] = visibility_of(d, topo, v, d.n[v]);
     d.ok[v] = d.visibility[v] >= p.min_visibility;

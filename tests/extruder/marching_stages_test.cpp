@@ -46,10 +46,10 @@ TEST(WallTopology, GridTablesAreSortedAndComplete) {
   const TriSurface s = flat_grid(2);
   const WallTopology t = build_wall_topology(s);
   // Centre point 4 of the 3x3 grid: 6 triangles, 6 neighbours (the diagonal split adds 2).
-  EXPECT_EQ(t.vertex_triangles.size(4), 6);
-  EXPECT_EQ(t.vertex_neighbours.size(4), 6);
+  EXPECT_EQ(t.vertex_triangles.count(4), 6);
+  EXPECT_EQ(t.vertex_neighbours.count(4), 6);
   EXPECT_TRUE(std::is_sorted(t.vertex_neighbours.begin(4), t.vertex_neighbours.end(4)));
-  EXPECT_EQ(t.vertex_triangles.size(2), 1);  // corner (2,0): one triangle
+  EXPECT_EQ(t.vertex_triangles.count(2), 1);  // corner (2,0): one triangle
   for (int v = 0; v < t.n_points(); ++v) EXPECT_TRUE(t.used[v]);
 }
 

@@ -346,6 +346,39 @@ TEST(NearestTriangle, DistanceToABoxMatchesItsClosedForm) {
   }
 }
 
+TEST(LayerFidelity, AForeignMeshWithShuffledAndRoundedPointsMeasuresAsTheOriginal) {
+  // Another mesher's output: the same cells with the points in another order and their
+  // coordinates read by another parser (here: rounded to float).
+  const TriSurface wall = flat_plate(4);
+  const VolumeMesh m = layer_mesh(wall, straight_columns(wall, up(wall), cumulative_heights(kH1, kRatio, kLayers)));
+  const std::size_t np = m.points.size();
+  std::vector<std::int64_t> order(np);
+  for (std::size_t p = 0; p < np; ++p) order[p] = static_cast<std::int64_t>((p * 7919) % np);  // 7919 prime, np = 275
+  ASSERT_NE(np % 7919, 0u);
+  std::vector<std::int64_t> where(np);
+  VolumeMesh foreign;
+  foreign.points.resize(np);
+  for (std::size_t p = 0; p < np; ++p) {
+    where[order[p]] = static_cast<std::int64_t>(p);
+    for (int i = 0; i < 3; ++i) foreign.points[p][i] = static_cast<float>(m.points[order[p]][i]);
+  }
+  for (std::size_t c = 0; c < m.n_cells(); ++c) {
+    std::int64_t nodes[8];
+    for (int i = 0; i < corner_count(m.cell_types[c]); ++i) nodes[i] = where[m.connectivity[m.offsets[c] + i]];
+    foreign.add_cell(m.cell_types[c], nodes);
+  }
+  const LayerFidelity a = measure_layer_fidelity(m, wall, targets());
+  const LayerFidelity b = measure_layer_fidelity(with_wall_points_first(foreign, wall), wall, targets());
+  EXPECT_EQ(b.n_complete, a.n_complete);
+  EXPECT_EQ(b.first_within_1pct_planes, a.first_within_1pct_planes);
+  // Float rounding of the layer points: 1e-7 relative of coordinates ~1, i.e. ~1e-5 of h1.
+  EXPECT_NEAR(b.first_over_h1_planes.min, a.first_over_h1_planes.min, 1e-4);
+  EXPECT_NEAR(b.top_over_T_distance.p50, a.top_over_T_distance.p50, 1e-4);
+  TriSurface moved = wall;
+  moved.points[3][0] += 0.0123;  // no mesh point there
+  EXPECT_THROW(with_wall_points_first(foreign, moved), std::invalid_argument);
+}
+
 TEST(LayerFidelity, PercentilesInterpolateBetweenOrderStatistics) {
   std::vector<double> v;
   for (int i = 100; i >= 0; --i) v.push_back(i);  // 0..100, unsorted

@@ -15,39 +15,43 @@
 //   result is valid is decided once, by the caller's independent check
 //   (quality/mesh_check.h).
 //
-// Algorithm (marching, layer by layer)
-//   0. Heights: the growth law gives h_k (times the local mean edge length e_v when
-//      relative; e_v = mean wall edge length at v). Per column, the total is capped at
-//      max_height_to_edge_ratio times the shortest wall edge at v (height_cap_length) and
-//      at proximity_safety times the gap seen along the wall normal (a ray against the
-//      other wall triangles); both caps scale all N layers of the column alike, so the
-//      column keeps its layers, and are smoothed downward over height_smoothing_rings.
-//   1. On the current front (same triangles, current column tops) point normals are
-//      recomputed with compute_point_normals (normal_method), and optionally smoothed
-//      with neighbours (Jacobi passes; the full, half or quarter blend towards the
-//      neighbour average, whichever comes first); a smoothed direction is kept only if
-//      its visibility V = min_i n.f_i over the incident front faces does not drop below
-//      the unsmoothed one's (and below min_visibility).
-//   2. Step s = h / V, so the new point is h above every incident face plane (1/V capped
-//      at max_step_stretch). A column with V < min_visibility stops (visibility).
-//   3. Proximity: the step segment, extended to s / proximity_safety, is intersected with
-//      the wall and current-front triangles not incident to the column (front-facing
-//      hits only); the step is cut to proximity_safety times the hit distance.
-//   4. The step factors are smoothed downward (linear ramp over height_smoothing_rings
-//      rings), so limited spots leave no steps. A column cut below min_layer_fraction of
-//      its layer height stops instead.
-//   5. Every cell of the new layer is checked exactly (all corner tets); the new front
-//      triangles are checked exactly against the new front, the current front and the
-//      wall. Columns of failing cells / triangles are first turned towards the mean
-//      direction of the failing triangles around them (direction_repair_passes; the
-//      usual cause is sideways shear between neighbouring columns on thin triangles),
-//      then get their step halved (and the reduction smoothed) and are re-checked;
-//      below min_layer_fraction they stop (quality / collision). The loop ends when
-//      everything passes.
-//   6. Per wall triangle the layer becomes a wedge, pyramid or tet by how many of its
+// Algorithm (marching, layer by layer; the design and its measurements are in
+// docs/extrusion.md)
+//   The rule: the first height is sacred, the growth law is the target, and a limit ends
+//   or compresses the top of a column, never its bottom.
+//   0. Plan (column_heights.h, column_plan.h): the growth law's heights on every column
+//      (times the local mean edge length when relative), fitted into proximity_safety
+//      of the gap to the wall each column faces along its wall direction: the upper
+//      layers are compressed (a smaller ratio, below 1 only as far as keeps every layer
+//      at least h1), and only when even that does not fit are layers dropped; a gap
+//      below h1 / proximity_safety plans no layer. Optionally (max_layer_aspect) a
+//      column ends before its first layer taller than that multiple of its wall spacing.
+//   1. Directions (step_directions.h): the wall's point normals (normal_method),
+//      smoothed without losing visibility. On later layers (column_directions):
+//      kKept, the default, keeps each column's direction while it sees the current
+//      front's faces by min_visibility and turns it only as far as needed towards the
+//      front's own normal; kRecomputed takes the front's point normals every layer.
+//      A column with no direction visible by min_visibility stops (kVisibility).
+//   2. Step (layer_steps.h): the path length that lifts the column's new point to its
+//      planned cumulative height above its incident wall planes, within
+//      [h_k, max_step_stretch h_k] (a column held back by that cap is reported as
+//      kStepStretch).
+//   3. Proximity: the rest of the column, extended by 1 / proximity_safety, is cast
+//      against the wall and the current front; the column's remaining layers are fitted
+//      into proximity_safety of the gap ahead (compressed, or ended under kTerminate),
+//      ramped over height_smoothing_rings so limited spots leave no steps.
+//   4. Checks (front_checker.h): every cell of the new layer exactly (all corner and
+//      split tets), and the new front against itself, the current front and the wall.
+//      Columns of failing cells or triangles are first turned towards their neighbours
+//      (direction_repair_passes), then the layer is lowered (halved, never below h1;
+//      the layers above restart the growth from it), and only at h1 -- or on the first
+//      layer, whose height is never lowered -- does the column end (kQuality,
+//      kCollision). The loop ends when every cell passes.
+//   5. Per wall triangle the layer becomes a wedge, pyramid or tet by how many of its
 //      columns grow (layer_cells.h); side faces depend on one edge only, so the mesh
 //      stays conforming.
 //   Per-vertex and per-cell work runs in parallel (TBB); results are deterministic.
+//   The report (extrusion_report.h) measures what was delivered on the mesh itself.
 //
 // Output arrays
 //   point  normal        (3) direction of the column segment leaving the point (the
@@ -57,9 +61,10 @@
 //   point  layers        int layers the point's column reached
 //   cell   layer         int 0 = the layer on the wall
 //
-// Stages (one header each): wall_topology (tables), step_directions (1 and the
-// direction repair of 5), column_heights (0), proximity_rays and layer_steps (2-5),
-// front_checker (the exact checks of 5), layer_assembly (6), extrusion_report.
+// Stages (one header each): wall_topology and wall_planes (tables, heights above the
+// wall), column_heights and column_plan (0), step_directions (1 and the turn of 4),
+// proximity_rays and layer_steps (2-4), front_checker (the exact checks of 4),
+// layer_assembly (5), extrusion_report.
 #pragma once
 
 #include <cstddef>

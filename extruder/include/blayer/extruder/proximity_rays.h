@@ -8,15 +8,11 @@
 
 #include <vector>
 
+#include "blayer/core/ray_triangle.h"
 #include "blayer/core/surface.h"
 #include "blayer/extruder/triangle_bvh.h"
 
 namespace blayer {
-
-// Distance along the unit direction dir from o to the triangle (a,b,c), or +inf when
-// the ray misses it within [0, t_max]; a ray parallel to the triangle misses it.
-double ray_triangle_distance(const Vec3& o, const Vec3& dir, const Vec3& a, const Vec3& b, const Vec3& c,
-                             double t_max);
 
 // A view of the wall and, optionally, the current front (the wall's triangles on the
 // column tops), each with a tree over its triangles' boxes and unit triangle normals.

@@ -5,18 +5,12 @@
 #include <vector>
 
 #include "blayer/core/surface.h"
+#include "blayer/core/vertex_adjacency.h"
 #include "blayer/core/vertex_fans.h"
 
 namespace blayer {
 
-// Compressed adjacency lists: the items of v are items[start[v] .. start[v+1]).
-struct Csr {
-  std::vector<int> start;
-  std::vector<int> items;
-  const int* begin(int v) const { return items.data() + start[v]; }
-  const int* end(int v) const { return items.data() + start[v + 1]; }
-  int size(int v) const { return start[v + 1] - start[v]; }
-};
+using Csr = CsrTable;
 
 struct WallTopology {
   VertexFans fans;                 // ordered one-rings (normals)
@@ -26,7 +20,7 @@ struct WallTopology {
   int n_points() const { return static_cast<int>(used.size()); }
 };
 
-// O(#F log) construction; the neighbour lists are built in parallel.
+// O(#F) plus a sort of each point's neighbours (core/vertex_adjacency.h).
 WallTopology build_wall_topology(const TriSurface& wall);
 
 }  // namespace blayer
