@@ -9,6 +9,7 @@
 #include "blayer/quality/mesh_check.h"
 #include "blayer/quality/layer_fidelity.h"
 #include "commands.h"
+#include "growth_options.h"
 #include "surface_options.h"
 
 namespace blayer {
@@ -25,13 +26,8 @@ struct FidelityRequest {
 FidelityRequest fidelity_request(const ParamValues& params) {
   FidelityRequest r;
   r.wall = load_surface(params.get_string("wall"), surface_options(params)).surface;
-  GrowthLaw g;
-  g.layers = params.get_int("layers");
-  g.first_height = params.get_real("first-height");
-  g.growth_ratio = params.get_real("growth-ratio");
-  g.total_thickness = params.get_real("total-thickness");
-  g.last_height = params.get_real("last-height");
-  if (!params.is_set("first-height") && !params.is_set("total-thickness") && !params.is_set("last-height"))
+  const GrowthLaw g = growth_law_options(params);
+  if (!any_height_given(params))
     throw InputError("--wall needs the growth law the layers were asked for (e.g. --first-height H --growth-ratio R)");
   const ResolvedGrowthLaw law = resolve_growth_law(g);
   r.targets = {law.first_height, law.total_thickness, law.layers};

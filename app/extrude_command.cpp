@@ -17,6 +17,7 @@
 #include "blayer/io/vtk_io.h"
 #include "blayer/quality/mesh_check.h"
 #include "commands.h"
+#include "growth_options.h"
 #include "surface_options.h"
 
 namespace blayer {
@@ -25,17 +26,11 @@ namespace {
 
 ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, std::vector<std::string>* notes) {
   ExtrusionParams e;
-  GrowthLaw g;
-  g.layers = p.get_int("layers");
-  g.first_height = p.get_real("first-height");
-  g.growth_ratio = p.get_real("growth-ratio");
-  g.total_thickness = p.get_real("total-thickness");
-  g.last_height = p.get_real("last-height");
-  g.relative = p.get_bool("relative-heights");
+  const GrowthLaw g = growth_law_options(p);
   // The default height is for a user who gave none of the three options; an explicit
   // 0 is the growth law's "derive it" and is left to the law's own checks.
   e.growth = g;
-  if (!p.is_set("first-height") && !p.is_set("total-thickness") && !p.is_set("last-height")) {
+  if (!any_height_given(p)) {
     if (g.relative) throw InputError("--relative-heights needs first-height, total-thickness or last-height");
     std::string note;
     e.growth = with_default_first_height(g, bounding_box_diagonal(wall.points), &note);

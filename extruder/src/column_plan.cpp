@@ -3,9 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "blayer/core/assert.h"
+
 namespace blayer {
 
 namespace {
+
+// The compressed ratio is bisected until the bracket is this relative width: a few ulps
+// of a ratio near 1, so the budget is met to rounding.
+constexpr double kRatioBisectionRelWidth = 1e-15;
 
 // p (r + r^2 + ... + r^m)
 double grown_sum(double p, double r, int m) {
@@ -22,7 +28,7 @@ double grown_sum(double p, double r, int m) {
 double fitting_ratio(double p, double r_min, double r_max, int m, double budget) {
   if (grown_sum(p, r_max, m) <= budget) return r_max;
   double lo = r_min, hi = r_max;
-  for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
+  for (int it = 0; it < 200 && hi - lo > kRatioBisectionRelWidth * hi; ++it) {
     const double mid = 0.5 * (lo + hi);
     (grown_sum(p, mid, m) <= budget ? lo : hi) = mid;
   }
@@ -65,6 +71,7 @@ ColumnPlan plan_columns(const ResolvedGrowthLaw& law, const std::vector<double>&
 }
 
 bool compress_from(ColumnPlan* plan, int v, int k, double budget, StopReason why) {
+  BLAYER_ASSERT(k >= 0 && k <= plan->n_layers && budget >= 0.0);
   const int n = plan->planned_layers[v];
   if (k >= n || plan->remaining(v, k) <= budget) return false;
   note_limit(plan, v, why);
@@ -110,6 +117,8 @@ int layers_that_fit(const ColumnPlan& plan, int v, int k, double budget) {
 }
 
 void lower_layer(ColumnPlan* plan, int v, int k, double height, StopReason why) {
+  BLAYER_ASSERT_MSG(k > 0 && height >= plan->height(v, 0) && height <= plan->height(v, k),
+                    "a layer is lowered to between the first height and its planned height");
   note_limit(plan, v, why);
   plan->height(v, k) = height;
   double h = height;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
 #include "blayer/core/stopwatch.h"
 #include "blayer/extruder/column_heights.h"
@@ -13,6 +14,7 @@
 #include "blayer/extruder/step_directions.h"
 #include "blayer/extruder/wall_planes.h"
 #include "blayer/extruder/wall_topology.h"
+#include "blayer/quality/cell_validity.h"
 
 namespace blayer {
 
@@ -29,6 +31,19 @@ void check_wall(const TriSurface& wall) {
   for (const Triangle& t : wall.triangles)
     for (int v : t)
       if (v < 0 || v >= nv) throw InputError("extrude_layers: a wall triangle refers to a missing point");
+}
+
+// Every cell of the layer mesh passes the exact validity test: what the per-layer checks
+// guarantee, re-established from scratch (checked builds only; the caller's mesh check
+// is the run's decision).
+[[maybe_unused]] bool every_cell_valid(const VolumeMesh& m) {
+  for (std::size_t c = 0; c < m.n_cells(); ++c) {
+    Vec3 corners[8];
+    const int n = corner_count(m.cell_types[c]);
+    for (int i = 0; i < n; ++i) corners[i] = m.points[m.connectivity[m.offsets[c] + i]];
+    if (cell_validity(m.cell_types[c], corners) != Validity::kValid) return false;
+  }
+  return true;
 }
 
 std::vector<char> growing(const ColumnState& c) {
@@ -107,6 +122,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
 
   phase.restart();
   res.mesh = assembler.finish(columns);
+  BLAYER_EXPENSIVE_ASSERT(every_cell_valid(res.mesh));
   res.envelope.points = columns.top;
   res.envelope.triangles = wall.triangles;
   res.envelope_point_ids = columns.top_id;

@@ -35,7 +35,7 @@ void lower_failing_columns(int k, const FrontVerdict& verdict, const WallTopolog
     fraction[v] = plan->height(v, k) / start_height[v];
     if (!verdict.bad[v]) continue;
     const double first = plan->height(v, 0);
-    const bool at_floor = plan->height(v, k) <= first * (1.0 + 1e-12);
+    const bool at_floor = plan->height(v, k) <= first * (1.0 + kPlannedHeightRelTol);
     if (p.limit_policy == LimitPolicy::kTerminate || k == 0 || at_floor) {
       end_column_after(plan, v, k, verdict.reason[v]);
       columns->stop(v, verdict.reason[v]);
@@ -95,7 +95,7 @@ void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& to
   for (int v = 0; v < nv; ++v) {
     if (!active[v]) continue;
     const double budget = allowed[v] * plan->target_total[v] - plan->cumulative(v, k - 1);
-    if (!(budget < plan->remaining(v, k) * (1.0 - 1e-12))) continue;
+    if (!(budget < plan->remaining(v, k) * (1.0 - kPlannedHeightRelTol))) continue;
     if (p.limit_policy == LimitPolicy::kCompress)
       compress_from(plan, v, k, std::max(budget, 0.0), why[v]);
     else

@@ -19,13 +19,6 @@ namespace {
 // volume is far above that and far below any missing or doubled cell.
 constexpr double kVolumeSumRelTol = 1e-9;
 
-ExtrusionParams params(int n, double first, double ratio) {
-  ExtrusionParams p;
-  p.growth.layers = n;
-  p.growth.first_height = first;
-  p.growth.growth_ratio = ratio;
-  return p;
-}
 
 std::set<std::vector<std::int64_t>> sorted_faces(const std::vector<IndexedTriangle>& tris) {
   std::set<std::vector<std::int64_t>> s;
@@ -90,7 +83,7 @@ void expect_valid_extrusion(const TriSurface& wall, const ExtrusionResult& r, bo
 TEST(ExtrudeLayers, SphereGetsAllLayersWithTheGrowthLawThickness) {
   const double radius = 1.0;
   const TriSurface wall = test::icosphere(3, radius);
-  const ExtrusionParams p = params(5, 0.01, 1.2);
+  const ExtrusionParams p = test::growth_params(5, 0.01, 1.2);
   const ExtrusionResult r = extrude_layers(wall, p);
   expect_valid_extrusion(wall, r);
   const ExtrusionReport& rep = r.report;
@@ -118,7 +111,7 @@ TEST(ExtrudeLayers, SphereGetsAllLayersWithTheGrowthLawThickness) {
 
 TEST(ExtrudeLayers, CubeConvexEdgesAndCornersAreCovered) {
   const TriSurface wall = test::voxel_surface({4, 4, 4}, [](int, int, int) { return true; }, 0.25);
-  const ExtrusionResult r = extrude_layers(wall, params(5, 0.01, 1.2));
+  const ExtrusionResult r = extrude_layers(wall, test::growth_params(5, 0.01, 1.2));
   expect_valid_extrusion(wall, r);
   EXPECT_EQ(r.report.coverage, 1.0);
   double min_jacobian = 1.0;
@@ -135,7 +128,7 @@ TEST(ExtrudeLayers, StoppedColumnsCloseWithPyramidsAndTets) {
   // With min_visibility 0.75 the cube's edge (V = cos 45) and corner (V = cos 54.7)
   // columns cannot start; the face columns grow, and the layer closes conformingly.
   const TriSurface wall = test::voxel_surface({4, 4, 4}, [](int, int, int) { return true; }, 0.25);
-  ExtrusionParams p = params(3, 0.01, 1.2);
+  ExtrusionParams p = test::growth_params(3, 0.01, 1.2);
   p.min_visibility = 0.75;
   const ExtrusionResult r = extrude_layers(wall, p);
   expect_valid_extrusion(wall, r);
@@ -158,14 +151,14 @@ TEST(ExtrudeLayers, StoppedColumnsCloseWithPyramidsAndTets) {
 TEST(ExtrudeLayers, LBlockConcaveEdgeStaysValid) {
   const TriSurface wall =
       test::voxel_surface({4, 2, 4}, [](int i, int, int k) { return !(i >= 2 && k >= 2); }, 0.25);
-  const ExtrusionResult r = extrude_layers(wall, params(5, 0.01, 1.2));
+  const ExtrusionResult r = extrude_layers(wall, test::growth_params(5, 0.01, 1.2));
   expect_valid_extrusion(wall, r);
   EXPECT_GE(r.report.coverage, 0.95);
 }
 
 TEST(ExtrudeLayers, BoxInteriorConcaveCornersStayValid) {
   const TriSurface wall = test::flipped(test::voxel_surface({4, 4, 4}, [](int, int, int) { return true; }, 0.25));
-  const ExtrusionResult r = extrude_layers(wall, params(5, 0.01, 1.2));
+  const ExtrusionResult r = extrude_layers(wall, test::growth_params(5, 0.01, 1.2));
   expect_valid_extrusion(wall, r);
   EXPECT_GE(r.report.coverage, 0.95);
 }
@@ -200,7 +193,7 @@ TEST(ExtrudeLayers, ThinSlotFrontsStopBeforeMeeting) {
 
 TEST(ExtrudeLayers, RelativeHeightsScaleWithTheLocalEdgeLength) {
   const TriSurface wall = test::icosphere(2, 1.0);
-  ExtrusionParams p = params(3, 0.1, 1.2);
+  ExtrusionParams p = test::growth_params(3, 0.1, 1.2);
   p.growth.relative = true;
   const ExtrusionResult r = extrude_layers(wall, p);
   expect_valid_extrusion(wall, r);
@@ -212,7 +205,7 @@ TEST(ExtrudeLayers, RelativeHeightsScaleWithTheLocalEdgeLength) {
 
 TEST(ExtrudeLayers, ResultDoesNotDependOnTheThreadCount) {
   const TriSurface wall = test::voxel_surface({4, 2, 4}, [](int i, int, int k) { return !(i >= 2 && k >= 2); }, 0.25);
-  const ExtrusionParams p = params(4, 0.02, 1.3);
+  const ExtrusionParams p = test::growth_params(4, 0.02, 1.3);
   ExtrusionResult a;
   {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
@@ -227,7 +220,7 @@ TEST(ExtrudeLayers, ResultDoesNotDependOnTheThreadCount) {
 TEST(ExtrudeLayers, ProgressIsReportedPerLayer) {
   const TriSurface wall = test::icosphere(1, 1.0);
   std::vector<int> seen;
-  extrude_layers(wall, params(3, 0.01, 1.2), [&](int k, int n) {
+  extrude_layers(wall, test::growth_params(3, 0.01, 1.2), [&](int k, int n) {
     EXPECT_EQ(n, 3);
     seen.push_back(k);
   });
@@ -236,10 +229,10 @@ TEST(ExtrudeLayers, ProgressIsReportedPerLayer) {
 
 TEST(ExtrudeLayers, RejectsBadParameters) {
   const TriSurface wall = test::icosphere(1, 1.0);
-  ExtrusionParams p = params(3, 0.01, 1.2);
+  ExtrusionParams p = test::growth_params(3, 0.01, 1.2);
   p.proximity_safety = 0.8;
   EXPECT_THROW(extrude_layers(wall, p), InputError);
-  p = params(3, 0.01, 1.2);
+  p = test::growth_params(3, 0.01, 1.2);
   p.min_visibility = 0.0;
   EXPECT_THROW(extrude_layers(wall, p), InputError);
   p = ExtrusionParams{};  // no height given
@@ -248,7 +241,7 @@ TEST(ExtrudeLayers, RejectsBadParameters) {
 
 TEST(ExtrudeLayers, ReportNamesTheFigures) {
   const TriSurface wall = test::icosphere(1, 1.0);
-  const ExtrusionResult r = extrude_layers(wall, params(2, 0.01, 1.2));
+  const ExtrusionResult r = extrude_layers(wall, test::growth_params(2, 0.01, 1.2));
   const std::string s = format_extrusion_report(r.report);
   for (const char* key : {"coverage", "first height", "total thickness", "wedges", "stopped", "time"})
     EXPECT_NE(s.find(key), std::string::npos) << key;

@@ -22,13 +22,6 @@ TriSurface slotted_block() {
   return test::voxel_surface({9, 6, 6}, [](int i, int, int k) { return !(i == 4 && k >= 1); }, kCell);
 }
 
-ExtrusionParams law(int n, double h1, double r) {
-  ExtrusionParams p;
-  p.growth.layers = n;
-  p.growth.first_height = h1;
-  p.growth.growth_ratio = r;
-  return p;
-}
 
 // Points of every column, wall point first (layer by layer, columns in index order:
 // the order in which the extruder appends them).
@@ -64,7 +57,7 @@ std::vector<double> x_heights(const std::vector<Vec3>& column) {
 
 TEST(LayerLimits, WallGapCompressesTheUpperLayersAndKeepsTheFirstHeight) {
   const TriSurface wall = slotted_block();
-  const ExtrusionParams p = law(5, 0.02, 1.3);  // T = 0.181 > 0.45 x 0.25; 5 x h1 = 0.1 fits
+  const ExtrusionParams p = test::growth_params(5, 0.02, 1.3);  // T = 0.181 > 0.45 x 0.25; 5 x h1 = 0.1 fits
   const ExtrusionResult r = extrude_layers(wall, p);
   const auto columns = column_points(wall, r);
   const std::vector<int> mid = mid_slot_columns(wall);
@@ -93,7 +86,7 @@ TEST(LayerLimits, WallGapCompressesTheUpperLayersAndKeepsTheFirstHeight) {
 TEST(LayerLimits, ColumnsEndOnlyWhenEvenUniformLayersDoNotFit) {
   const TriSurface wall = slotted_block();
   // 5 x h1 = 0.15 > 0.1125: three layers of h1 fit (0.09), a fourth does not.
-  const ExtrusionResult r = extrude_layers(wall, law(5, 0.03, 1.2));
+  const ExtrusionResult r = extrude_layers(wall, test::growth_params(5, 0.03, 1.2));
   const auto columns = column_points(wall, r);
   for (int v : mid_slot_columns(wall)) {
     ASSERT_EQ(r.column_layers[v], 3) << stop_reason_name(r.stop_reason[v]) << " at y " << wall.points[v][1];
@@ -104,7 +97,7 @@ TEST(LayerLimits, ColumnsEndOnlyWhenEvenUniformLayersDoNotFit) {
 
 TEST(LayerLimits, TerminateKeepsTheLawsHeightsAndEndsAtTheLimit) {
   const TriSurface wall = slotted_block();
-  ExtrusionParams p = law(5, 0.02, 1.3);
+  ExtrusionParams p = test::growth_params(5, 0.02, 1.3);
   p.limit_policy = LimitPolicy::kTerminate;
   const ExtrusionResult r = extrude_layers(wall, p);
   const auto columns = column_points(wall, r);
@@ -120,7 +113,7 @@ TEST(LayerLimits, TerminateKeepsTheLawsHeightsAndEndsAtTheLimit) {
 
 TEST(LayerLimits, AGapBelowTheFirstHeightOverTheSafetyGrowsNoLayer) {
   const TriSurface wall = slotted_block();
-  const ExtrusionResult r = extrude_layers(wall, law(3, 0.12, 1.2));  // 0.12 > 0.1125
+  const ExtrusionResult r = extrude_layers(wall, test::growth_params(3, 0.12, 1.2));  // 0.12 > 0.1125
   for (int v : mid_slot_columns(wall)) {
     EXPECT_EQ(r.column_layers[v], 0);
     EXPECT_EQ(r.stop_reason[v], StopReason::kWallGap);
@@ -131,7 +124,7 @@ TEST(LayerLimits, AGapBelowTheFirstHeightOverTheSafetyGrowsNoLayer) {
 
 TEST(LayerLimits, FreeColumnsKeepTheLawExactly) {
   const TriSurface wall = test::voxel_surface({2, 2, 2}, [](int, int, int) { return true; }, kCell);
-  const ExtrusionResult r = extrude_layers(wall, law(4, 0.01, 1.25));
+  const ExtrusionResult r = extrude_layers(wall, test::growth_params(4, 0.01, 1.25));
   const auto columns = column_points(wall, r);
   EXPECT_TRUE(r.report.complete());
   EXPECT_TRUE(thickness_warning(r.report).empty());
@@ -147,7 +140,7 @@ TEST(LayerLimits, FreeColumnsKeepTheLawExactly) {
 
 TEST(LayerLimits, AspectRatioLayerEndStopsTallLayers) {
   const TriSurface wall = test::voxel_surface({2, 2, 2}, [](int, int, int) { return true; }, kCell);
-  ExtrusionParams p = law(6, 0.02, 1.5);  // heights 0.02 0.03 0.045 0.0675 ...
+  ExtrusionParams p = test::growth_params(6, 0.02, 1.5);  // heights 0.02 0.03 0.045 0.0675 ...
   // Mean wall edge at a face centre: 4 x 0.25 and 2 x 0.25 sqrt 2 -> 0.285; x 0.2 = 0.057.
   p.max_layer_aspect = 0.2;
   const ExtrusionResult r = extrude_layers(wall, p);

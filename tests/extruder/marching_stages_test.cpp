@@ -20,27 +20,19 @@
 namespace blayer {
 namespace {
 
-// A flat n x n grid of unit squares in z = 0, split into triangles facing +z.
-TriSurface flat_grid(int n, double spacing = 1.0) {
-  TriSurface s;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) s.points.push_back({i * spacing, j * spacing, 0.0});
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return s;
-}
-
-ExtrusionParams law_params(int n, double h1, double r) {
-  ExtrusionParams p;
-  p.growth.layers = n;
-  p.growth.first_height = h1;
-  p.growth.growth_ratio = r;
+// The law without smoothing, direction repair or height ramps: the settling tests see
+// the checker's verdict acted on directly.
+ExtrusionParams unrepaired_params(int n, double h1, double r) {
+  ExtrusionParams p = test::growth_params(n, h1, r);
+  p.normal_smoothing_iterations = 0;
+  p.direction_repair_passes = 0;
+  p.height_smoothing_rings = 0;
   return p;
 }
+
+// A flat n x n grid of squares of the given spacing in z = 0, facing +z.
+TriSurface flat_grid(int n, double spacing = 1.0) { return test::square_plate(n, n * spacing); }
+
 
 TEST(WallTopology, GridTablesAreSortedAndComplete) {
   const TriSurface s = flat_grid(2);
@@ -98,7 +90,7 @@ TEST(ColumnHeights, WallGapFitsColumnsFacingAnotherWallIntoTheSafetyShare) {
   const double gap = 1.0;
   const TriSurface wall = facing_plates(gap);
   const WallTopology topo = build_wall_topology(wall);
-  ExtrusionParams p = law_params(4, 0.05, 2.0);  // 0.05 0.1 0.2 0.4: T = 0.75 > 0.45 x gap
+  ExtrusionParams p = test::growth_params(4, 0.05, 2.0);  // 0.05 0.1 0.2 0.4: T = 0.75 > 0.45 x gap
   p.height_smoothing_rings = 0;
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
@@ -151,7 +143,7 @@ TEST(ColumnPlan, LoweringALayerRestartsTheGrowthFromIt) {
 TEST(StepDirections, SmoothingNeverLowersVisibilityBelowTheRawDirection) {
   const TriSurface wall = test::icosphere(2, 1.0);
   const WallTopology topo = build_wall_topology(wall);
-  ExtrusionParams raw = law_params(1, 0.01, 1.0), smooth = raw;
+  ExtrusionParams raw = test::growth_params(1, 0.01, 1.0), smooth = raw;
   raw.normal_smoothing_iterations = 0;
   smooth.normal_smoothing_iterations = 3;
   const StepDirections a = compute_step_directions(wall, topo, topo.used, raw);
@@ -166,7 +158,7 @@ TEST(StepDirections, SmoothingNeverLowersVisibilityBelowTheRawDirection) {
 TEST(StepDirections, RepairTurnsAFailingColumnTowardsItsNeighbours) {
   const TriSurface wall = flat_grid(2);
   const WallTopology topo = build_wall_topology(wall);
-  ExtrusionParams p = law_params(1, 0.1, 1.0);
+  ExtrusionParams p = test::growth_params(1, 0.1, 1.0);
   p.normal_smoothing_iterations = 0;
   StepDirections d = compute_step_directions(wall, topo, topo.used, p);
   const int centre = 4;
@@ -183,13 +175,23 @@ TEST(StepDirections, RepairTurnsAFailingColumnTowardsItsNeighbours) {
   EXPECT_GT(d.n[centre][2], normalized(Vec3{0.5, 0.0, 1.0})[2]);
 }
 
+// A first layer on a flat grid: every column on the wall, all grown 0.1 up.
+struct FlatFirstLayer {
+  TriSurface wall;
+  std::vector<Vec3> top, next;
+  std::vector<int> layers;
+  std::vector<char> grows;
+  explicit FlatFirstLayer(int n) : wall(flat_grid(n)), top(wall.points), next(wall.points) {
+    layers.assign(top.size(), 0);
+    grows.assign(top.size(), 1);
+    for (Vec3& p : next) p[2] = 0.1;
+  }
+};
+
 TEST(FrontChecker, FlagsAnInvertedCellAndOnlyItsColumns) {
-  const TriSurface wall = flat_grid(2);
+  FlatFirstLayer f(2);
+  auto& [wall, top, next, layers, grows] = f;
   FrontChecker checker(wall, true);
-  std::vector<Vec3> top = wall.points, next = wall.points;
-  std::vector<int> layers(top.size(), 0);
-  std::vector<char> grows(top.size(), 1);
-  for (Vec3& p : next) p[2] = 0.1;
   checker.begin_layer(0, top, layers);
   FrontVerdict v;
   checker.check(0, top, next, grows, &v);
@@ -207,11 +209,8 @@ TEST(FrontChecker, FlagsAnInvertedCellAndOnlyItsColumns) {
 }
 
 TEST(FrontChecker, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {
-  const TriSurface wall = flat_grid(3);
-  std::vector<Vec3> top = wall.points, next = wall.points;
-  std::vector<int> layers(top.size(), 0);
-  std::vector<char> grows(top.size(), 1);
-  for (Vec3& p : next) p[2] = 0.1;
+  FlatFirstLayer f(3);
+  auto& [wall, top, next, layers, grows] = f;
   next[5] = {1.0, 1.0, -0.05};
   FrontChecker incremental(wall, true);
   incremental.begin_layer(0, top, layers);
@@ -248,7 +247,7 @@ TEST(LayerSteps, StepsReachThePlannedHeightAboveTheWallPlanes) {
   const TriSurface wall = test::icosphere(2, 1.0);
   const WallTopology topo = build_wall_topology(wall);
   const WallPlanes planes(wall, topo);
-  const ExtrusionParams p = law_params(3, 0.01, 1.2);
+  const ExtrusionParams p = test::growth_params(3, 0.01, 1.2);
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
   const ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
@@ -263,7 +262,7 @@ TEST(LayerSteps, ProximityCompressesTheRemainingLayersIntoTheGapShare) {
   const TriSurface wall = facing_plates(gap);
   const WallTopology topo = build_wall_topology(wall);
   const WallPlanes planes(wall, topo);
-  ExtrusionParams p = law_params(3, 0.3, 1.0);  // T = 0.9 > 0.45
+  ExtrusionParams p = test::growth_params(3, 0.3, 1.0);  // T = 0.9 > 0.45
   p.height_smoothing_rings = 0;
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
@@ -288,10 +287,7 @@ TEST(LayerSteps, AFirstLayerThatCannotBeMadeValidIsNotGrown) {
   const TriSurface wall = flat_grid(4);
   const WallTopology topo = build_wall_topology(wall);
   const WallPlanes planes(wall, topo);
-  ExtrusionParams p = law_params(2, 0.5, 1.0);
-  p.normal_smoothing_iterations = 0;
-  p.direction_repair_passes = 0;
-  p.height_smoothing_rings = 0;
+  ExtrusionParams p = unrepaired_params(2, 0.5, 1.0);
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   StepDirections d = compute_step_directions(wall, topo, topo.used, p);
   const int centre = 2 * 5 + 2;
@@ -309,7 +305,9 @@ TEST(LayerSteps, AFirstLayerThatCannotBeMadeValidIsNotGrown) {
   EXPECT_EQ(plan.planned_layers[centre], 0);
   // The first height is never lowered: every column that grows stands at h1.
   for (int v = 0; v < topo.n_points(); ++v) {
-    if (grows[v]) EXPECT_NEAR(planes.height_above(v, next[v]), 0.5, 1e-15) << v;
+    if (grows[v]) {
+      EXPECT_NEAR(planes.height_above(v, next[v]), 0.5, 1e-15) << v;
+    }
   }
 }
 
@@ -317,10 +315,7 @@ TEST(LayerSteps, AFailingUpperLayerIsLoweredBeforeTheColumnEnds) {
   const TriSurface wall = flat_grid(4);
   const WallTopology topo = build_wall_topology(wall);
   const WallPlanes planes(wall, topo);
-  ExtrusionParams p = law_params(2, 0.1, 4.0);  // layer 1 planned at 0.4
-  p.normal_smoothing_iterations = 0;
-  p.direction_repair_passes = 0;
-  p.height_smoothing_rings = 0;
+  ExtrusionParams p = unrepaired_params(2, 0.1, 4.0);  // layer 1 planned at 0.4
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   StepDirections d = compute_step_directions(wall, topo, topo.used, p);
   const int centre = 2 * 5 + 2;
@@ -348,7 +343,7 @@ TEST(LayerSteps, AFailingUpperLayerIsLoweredBeforeTheColumnEnds) {
 TEST(LayerAssembly, CellTypesFollowHowManyColumnsGrow) {
   const TriSurface wall = flat_grid(1);  // 4 points, 2 triangles (0,1,3) and (0,3,2)
   const WallTopology topo = build_wall_topology(wall);
-  ExtrusionParams p = law_params(1, 0.1, 1.0);
+  ExtrusionParams p = test::growth_params(1, 0.1, 1.0);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
   ColumnState c = ColumnState::on_wall(wall.points, topo.used);
   LayerAssembler a(wall, d);

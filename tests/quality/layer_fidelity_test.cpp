@@ -91,20 +91,9 @@ std::vector<std::vector<Vec3>> straight_columns(const TriSurface& wall, const st
 }
 
 // Unit square [0,1]^2 at z = 0, n x n quads split into triangles facing +z.
-TriSurface flat_plate(int n) {
-  TriSurface s;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) s.points.push_back({double(i) / n, double(j) / n, 0.0});
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return s;
-}
+TriSurface flat_plate(int n) { return test_surfaces::square_plate(n, 1.0); }
 
-int plate_id(int n, int i, int j) { return j * (n + 1) + i; }
+int plate_id(int n, int i, int j) { return test_surfaces::plate_index(n, i, j); }
 
 std::vector<Vec3> up(const TriSurface& s) { return std::vector<Vec3>(s.points.size(), Vec3{0, 0, 1}); }
 

@@ -11,6 +11,12 @@
 
 namespace blayer {
 
+// Two planned heights (or sums of a few) are the same height when they differ by less
+// than this relative amount: they come from a handful of multiplications and additions
+// of the same numbers (rounding ~1e-16 each), and no limit changes a height by that
+// little.
+constexpr double kPlannedHeightRelTol = 1e-12;
+
 struct ColumnPlan {
   int n_layers = 0;                  // N of the law
   double growth_ratio = 1.0;         // the law's ratio: no compressed ratio exceeds it
