@@ -4,6 +4,7 @@
 #include "blayer/core/stopwatch.h"
 #include "blayer/io/atomic_file.h"
 #include "blayer/io/vtk_io.h"
+#include "mesh_output.h"
 #include "blayer/quality/mesh_check.h"
 #include "commands.h"
 
@@ -33,7 +34,7 @@ int run_check_command(const ParamValues& params) {
               check_seconds > 0 ? static_cast<double>(file.mesh.n_cells()) / check_seconds : 0.0);
 
   if (!json.empty()) write_text_file(json_tmp, check_report_to_json(report).dump(2) + "\n", json);
-  if (!bad.empty()) write_vtu(extract_bad_cells(file.mesh, report), bad_tmp);
+  if (!bad.empty()) write_vtu(extract_bad_cells(file.mesh, report), bad_tmp, vtk_write_options(params));
   outputs.commit();
   if (!report.ok()) {
     std::printf("INVALID: %zu inverted, %zu flat, %zu non-conforming cells\n", report.totals.inverted,
