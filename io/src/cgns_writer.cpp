@@ -116,21 +116,32 @@ cgsize_t write_volume_sections(const CgnsFile& f, int base, int zone, const Solv
   return next;
 }
 
-void write_patch(const CgnsFile& f, int base, int zone, const SolverMesh& m, const BoundaryPatch& p, cgsize_t first) {
-  bool has_tri = false, has_quad = false;
-  for (std::size_t i = p.start; i < p.start + p.size; ++i) (m.faces.n_nodes[i] == 3 ? has_tri : has_quad) = true;
-  const bool mixed = has_tri && has_quad;
+// One element section of a patch's faces with n nodes (3 or 4), numbered from first.
+// Returns the number of faces written.
+cgsize_t write_face_section(const CgnsFile& f, int base, int zone, const SolverMesh& m, const BoundaryPatch& p,
+                            int n, const std::string& name, cgsize_t first) {
   std::vector<cgsize_t> conn;
-  for (std::size_t i = p.start; i < p.start + p.size; ++i) {
-    const int n = m.faces.n_nodes[i];
-    if (mixed) conn.push_back(n == 3 ? CGNS_ENUMV(TRI_3) : CGNS_ENUMV(QUAD_4));
-    for (int k = 0; k < n; ++k) conn.push_back(static_cast<cgsize_t>(m.faces.nodes[i][k] + 1));
-  }
-  const CGNS_ENUMT(ElementType_t) type = mixed ? CGNS_ENUMV(MIXED) : has_tri ? CGNS_ENUMV(TRI_3) : CGNS_ENUMV(QUAD_4);
-  const cgsize_t last = first + static_cast<cgsize_t>(p.size) - 1;
+  for (std::size_t i = p.start; i < p.start + p.size; ++i)
+    if (m.faces.n_nodes[i] == n)
+      for (int k = 0; k < n; ++k) conn.push_back(static_cast<cgsize_t>(m.faces.nodes[i][k] + 1));
+  const cgsize_t count = static_cast<cgsize_t>(conn.size() / n);
+  if (count == 0) return 0;
   int section = 0;
-  f.check(cg_section_write(f.fn(), base, zone, p.name.c_str(), type, first, last, 0, conn.data(), &section),
+  f.check(cg_section_write(f.fn(), base, zone, name.c_str(), n == 3 ? CGNS_ENUMV(TRI_3) : CGNS_ENUMV(QUAD_4), first,
+                           first + count - 1, 0, conn.data(), &section),
           "cannot write a boundary section");
+  return count;
+}
+
+void write_patch(const CgnsFile& f, int base, int zone, const SolverMesh& m, const BoundaryPatch& p, cgsize_t first) {
+  // A patch of triangles and quads gets two sections with consecutive element numbers
+  // (MIXED sections need the offsets array of newer CGNS files, which older readers lack).
+  std::size_t n_tri = 0;
+  for (std::size_t i = p.start; i < p.start + p.size; ++i) n_tri += m.faces.n_nodes[i] == 3;
+  const bool both = n_tri > 0 && n_tri < p.size;
+  const cgsize_t n_written = write_face_section(f, base, zone, m, p, 3, both ? p.name + "_tri" : p.name, first);
+  write_face_section(f, base, zone, m, p, 4, both ? p.name + "_quad" : p.name, first + n_written);
+  const cgsize_t last = first + static_cast<cgsize_t>(p.size) - 1;
 
   int family = 0, family_bc = 0;
   f.check(cg_family_write(f.fn(), base, p.name.c_str(), &family), "cannot write a family");

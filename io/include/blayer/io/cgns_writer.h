@@ -8,8 +8,10 @@
 //   Element sections, numbered from 1 in this order: one per volume cell type present
 //   (Tetrahedra TETRA_4, Pyramids PYRA_5, Prisms PENTA_6, Hexahedra HEXA_8), so CGNS
 //   element numbers follow the cell types, not blayer's cell order; then one section per
-//   boundary patch, named after it (TRI_3, QUAD_4, or MIXED when it has both), its
-//   faces' normals pointing out of the domain.
+//   boundary patch, named after it (TRI_3 or QUAD_4), its faces' normals pointing out
+//   of the domain; a patch of both has two, "<name>_tri" and "<name>_quad", with
+//   consecutive element numbers (no MIXED section: that needs the ElementStartOffset
+//   array, which readers built on CGNS before 3.4 do not know).
 //   ZoneBC: one BC_t per patch, named after it, over its section's element range
 //   (PointRange, GridLocation FaceCenter), with the BC type of its kind (wall BCWall,
 //   farfield BCFarfield, symmetry BCSymmetryPlane, open BCGeneral) and FamilyName =
