@@ -111,6 +111,11 @@ void expect_matches_brute_force(const VolumeMesh& m) {
   }
 }
 
+std::string grid_cell_name(const ::testing::TestParamInfo<GridCell>& info) {
+  static const char* const names[] = {"hexes", "wedges", "pyramids", "tets"};
+  return names[static_cast<int>(info.param)];
+}
+
 class MeshFacesOnGrids : public ::testing::TestWithParam<GridCell> {};
 
 TEST_P(MeshFacesOnGrids, MatchBruteForceOwnerNeighbourAndOrientation) {
@@ -120,7 +125,8 @@ TEST_P(MeshFacesOnGrids, MatchBruteForceOwnerNeighbourAndOrientation) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryCellType, MeshFacesOnGrids,
-                         ::testing::Values(GridCell::kHex, GridCell::kWedges, GridCell::kPyramids, GridCell::kTets));
+                         ::testing::Values(GridCell::kHex, GridCell::kWedges, GridCell::kPyramids, GridCell::kTets),
+                         grid_cell_name);
 
 TEST(MeshFaces, MixedGridMatchesBruteForce) {
   const VolumeMesh m = testing::mixed_grid_mesh(3, 2, 3);
