@@ -6,6 +6,7 @@
 #include "blayer/io/atomic_file.h"
 #include "blayer/io/prepare_surface.h"
 #include "blayer/io/vtk_io.h"
+#include "mesh_output.h"
 #include "blayer/quality/mesh_check.h"
 #include "blayer/quality/layer_fidelity.h"
 #include "commands.h"
@@ -83,7 +84,7 @@ int run_check_command(const ParamValues& params) {
     out["fidelity"] = layer_fidelity_to_json(f);
   }
   if (!json.empty()) write_text_file(json_tmp, out.dump(2) + "\n", json);
-  if (!bad.empty()) write_vtu(extract_bad_cells(file.mesh, report), bad_tmp);
+  if (!bad.empty()) write_vtu(extract_bad_cells(file.mesh, report), bad_tmp, vtk_write_options(params));
   outputs.commit();
   if (!report.ok()) {
     std::printf("INVALID: %zu inverted, %zu flat, %zu non-conforming cells\n", report.totals.inverted,

@@ -18,6 +18,7 @@
 #include "blayer/quality/mesh_check.h"
 #include "commands.h"
 #include "growth_options.h"
+#include "mesh_output.h"
 #include "surface_options.h"
 
 namespace blayer {
@@ -74,7 +75,9 @@ std::function<void(int, int)> progress_bar() {
 // The requested outputs (empty: not requested), and where each is staged.
 struct ExtrudeOutputs {
   std::string mesh, envelope, boundary, report;
-  std::string mesh_tmp, envelope_tmp, boundary_tmp, report_tmp;
+  StagedMesh mesh_staged;
+  std::string envelope_tmp, boundary_tmp, report_tmp;
+  VtkWriteOptions vtk;
 };
 
 // Stages every output before any work, so that a bad output path fails fast.
@@ -86,9 +89,8 @@ ExtrudeOutputs stage_outputs(const ParamValues& params, AtomicOutputs& outputs) 
     const std::string name = std::filesystem::path(params.get_string("input")).filename().string();
     o.mesh = name.substr(0, name.find('.')) + "_layers.vtu";
   }
-  if (std::filesystem::path(o.mesh).extension() != ".vtu")
-    throw InputError(o.mesh + ": the output of extrude is a .vtu file");
-  o.mesh_tmp = outputs.stage(o.mesh);
+  o.mesh_staged = stage_mesh_output(o.mesh, params.get_string("format"), outputs);
+  o.vtk = vtk_write_options(params);
   o.envelope = params.get_string("envelope");
   o.report = params.get_string("report");
   o.boundary = params.get_string("boundary");
@@ -165,17 +167,24 @@ nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, 
   return j;
 }
 
-void write_envelope(const ExtrusionResult& result, const std::string& path) {
+void write_envelope(const ExtrusionResult& result, const std::string& path, const VtkWriteOptions& vtk) {
   DataArray layers{"layers", 1, true, {}};
   for (int l : result.column_layers) layers.values.push_back(l);
   DataArray reason{"stop_reason", 1, true, {}};
   for (StopReason s : result.stop_reason) reason.values.push_back(static_cast<int>(s));
-  write_vtp(result.envelope, {layers, reason}, {}, path);
+  write_vtp(result.envelope, {layers, reason}, {}, path, vtk);
 }
 
-void write_boundary(const MarkedBoundary& b, const std::string& path) {
+void write_boundary(const MarkedBoundary& b, const std::string& path, const VtkWriteOptions& vtk) {
   DataArray marker{"marker", 1, true, std::vector<double>(b.marker.begin(), b.marker.end())};
-  write_vtp(b.surface, {}, {marker}, path);
+  write_vtp(b.surface, {}, {marker}, path, vtk);
+}
+
+void print_patches(const std::vector<BoundaryPatch>& patches) {
+  if (patches.empty()) return;
+  std::printf("boundary patches:");
+  for (const BoundaryPatch& p : patches) std::printf(" %s (%zu faces)", p.name.c_str(), p.size);
+  std::printf("\n");
 }
 
 void print_written(const ExtrudeOutputs& o, const MeshCheckReport& check, double check_seconds, double total_seconds) {
@@ -220,11 +229,13 @@ int run_extrude_command(const ParamValues& params) {
   const MeshCheckReport check = decide_validity(result.mesh);
   const double check_seconds = check_time.seconds();
 
-  write_vtu(result.mesh, out.mesh_tmp);
-  if (!out.envelope.empty()) write_envelope(result, out.envelope_tmp);
-  if (!out.boundary.empty())
-    write_boundary(hybrid_boundary(result.mesh, prepared.surface, filled->fill, filled->fill_to_mesh),
-                   out.boundary_tmp);
+  std::optional<MarkedBoundary> boundary;
+  if (filled) boundary = hybrid_boundary(result.mesh, prepared.surface, filled->fill, filled->fill_to_mesh);
+  PatchSources patch_sources{&prepared.surface, boundary ? &*boundary : nullptr, &result.envelope,
+                             &result.envelope_point_ids};
+  const std::vector<BoundaryPatch> patches = write_mesh_output(out.mesh_staged, result.mesh, patch_sources, out.vtk);
+  if (!out.envelope.empty()) write_envelope(result, out.envelope_tmp, out.vtk);
+  if (!out.boundary.empty()) write_boundary(*boundary, out.boundary_tmp, out.vtk);
   if (!out.report.empty())
     write_text_file(out.report_tmp,
                     report_json(params, result.report, check, n_layer_cells, filled ? &filled->fill.stats : nullptr,
@@ -233,6 +244,7 @@ int run_extrude_command(const ParamValues& params) {
                         "\n",
                     out.report);
   outputs.commit();
+  print_patches(patches);
   print_written(out, check, check_seconds, total.seconds());
   // A valid, written mesh that is thinner than the user requires: its own exit status.
   const double required = params.get_real("require-thickness");

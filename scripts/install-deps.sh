@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages blayer needs to build and test. Idempotent: packages
 # already present are skipped, and nothing is fetched when all are there.
-# Usage: scripts/install-deps.sh [--extras]   (--extras: gmsh and the picture tools)
+# Usage: scripts/install-deps.sh [--extras]   (--extras: the picture and timing tools)
 set -euo pipefail
 
 packages=(
@@ -18,10 +18,14 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev  # exact orient3d
   zlib1g-dev
   libxml2-utils             # tests: xmllint checks that every .vtu/.vtp is well-formed XML
-  python3-meshio            # tests: meshio (run by /usr/bin/python3) as an independent .vtu reader
+  python3-meshio            # tests: meshio (run by /usr/bin/python3) as an independent .vtu, .su2 and .msh reader
+  libcgns-dev               # CGNS output
+  cgns-convert              # tests: cgnscheck judges the CGNS output
+  openfoam                  # tests: checkMesh judges the polyMesh output, gmshToFoam reads the MSH output
+  gmsh                      # tests: gmsh re-reads the MSH output
 )
 if [[ "${1:-}" == "--extras" ]]; then
-  packages+=(gmsh python3-vtk9 xvfb xauth bc time)
+  packages+=(python3-vtk9 xvfb xauth bc time)
 fi
 
 missing=()
