@@ -17,6 +17,8 @@
 #include "blayer/io/vtk_io.h"
 #include "blayer/quality/mesh_check.h"
 #include "commands.h"
+#include "growth_options.h"
+#include "mesh_output.h"
 #include "surface_options.h"
 
 namespace blayer {
@@ -25,17 +27,11 @@ namespace {
 
 ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, std::vector<std::string>* notes) {
   ExtrusionParams e;
-  GrowthLaw g;
-  g.layers = p.get_int("layers");
-  g.first_height = p.get_real("first-height");
-  g.growth_ratio = p.get_real("growth-ratio");
-  g.total_thickness = p.get_real("total-thickness");
-  g.last_height = p.get_real("last-height");
-  g.relative = p.get_bool("relative-heights");
+  const GrowthLaw g = growth_law_options(p);
   // The default height is for a user who gave none of the three options; an explicit
   // 0 is the growth law's "derive it" and is left to the law's own checks.
   e.growth = g;
-  if (!p.is_set("first-height") && !p.is_set("total-thickness") && !p.is_set("last-height")) {
+  if (!any_height_given(p)) {
     if (g.relative) throw InputError("--relative-heights needs first-height, total-thickness or last-height");
     std::string note;
     e.growth = with_default_first_height(g, bounding_box_diagonal(wall.points), &note);
@@ -46,16 +42,14 @@ ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, s
   e.normal_smoothing_iterations = p.get_int("normal-smoothing");
   e.height_smoothing_rings = p.get_int("height-smoothing-rings");
   e.proximity_safety = p.get_real("proximity-safety");
-  e.max_height_to_edge_ratio = p.get_real("max-height-to-edge");
+  e.max_layer_aspect = p.get_real("max-layer-aspect");
   e.min_visibility = p.get_real("min-visibility");
   e.max_step_stretch = p.get_real("max-step-stretch");
-  e.min_layer_fraction = p.get_real("min-layer-fraction");
   e.check_collisions = p.get_bool("collision-check");
   e.direction_repair_passes = p.get_int("direction-repair-passes");
-  const std::string cap = p.get_string("height-cap-length");
-  e.height_cap_length = cap == "mean"   ? HeightCapLength::kMeanEdge
-                        : cap == "face" ? HeightCapLength::kFaceSize
-                                        : HeightCapLength::kShortestEdge;
+  e.column_directions = p.get_string("column-directions") == "recomputed" ? ColumnDirections::kRecomputed
+                                                                         : ColumnDirections::kKept;
+  e.limit_policy = p.get_string("limit") == "terminate" ? LimitPolicy::kTerminate : LimitPolicy::kCompress;
   // Every range was checked against the parameter table when the options were read.
   return e;
 }
@@ -75,7 +69,9 @@ std::function<void(int, int)> progress_bar() {
 // The requested outputs (empty: not requested), and where each is staged.
 struct ExtrudeOutputs {
   std::string mesh, envelope, boundary, report;
-  std::string mesh_tmp, envelope_tmp, boundary_tmp, report_tmp;
+  StagedMesh mesh_staged;
+  std::string envelope_tmp, boundary_tmp, report_tmp;
+  VtkWriteOptions vtk;
 };
 
 // Stages every output before any work, so that a bad output path fails fast.
@@ -87,9 +83,8 @@ ExtrudeOutputs stage_outputs(const ParamValues& params, AtomicOutputs& outputs) 
     const std::string name = std::filesystem::path(params.get_string("input")).filename().string();
     o.mesh = name.substr(0, name.find('.')) + "_layers.vtu";
   }
-  if (std::filesystem::path(o.mesh).extension() != ".vtu")
-    throw InputError(o.mesh + ": the output of extrude is a .vtu file");
-  o.mesh_tmp = outputs.stage(o.mesh);
+  o.mesh_staged = stage_mesh_output(o.mesh, params.get_string("format"), outputs);
+  o.vtk = vtk_write_options(params);
   o.envelope = params.get_string("envelope");
   o.report = params.get_string("report");
   o.boundary = params.get_string("boundary");
@@ -143,8 +138,6 @@ MeshCheckReport decide_validity(VolumeMesh& mesh) {
   return check;
 }
 
-nlohmann::json range_json(const RangeStats& r) { return {{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; }
-
 nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, const MeshCheckReport& check,
                            std::size_t n_layer_cells, const FillStats* fill, double seconds) {
   nlohmann::json j;
@@ -155,30 +148,10 @@ nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, 
   for (std::size_t c = 0; c < volume.size(); ++c) (c < n_layer_cells ? layers_volume : fill_volume) += volume[c];
   j["volume"] = {{"layers", layers_volume}, {"fill", fill_volume}};
   j["config"] = params.effective();
-  j["growth_law"] = {{"layers", r.growth.layers},
-                     {"first_height", r.growth.first_height},
-                     {"last_height", r.growth.last_height},
-                     {"total_thickness", r.growth.total_thickness},
-                     {"growth_ratio", r.growth.growth_ratio},
-                     {"relative", r.growth.relative}};
-  j["wall"] = {{"points", r.n_wall_points}, {"triangles", r.n_wall_triangles}};
-  j["achieved"] = {{"first_height", range_json(r.first_height)},
-                   {"total_thickness", range_json(r.total_thickness)},
-                   {"thickness_fraction", range_json(r.thickness_fraction)}};
-  j["coverage"] = r.coverage;
-  j["area_coverage"] = r.area_coverage;
-  nlohmann::json stopped;
-  for (int k = 1; k < kStopReasonCount; ++k) stopped[stop_reason_name(static_cast<StopReason>(k))] = r.stopped_columns[k];
-  j["columns"] = {{"complete", r.n_complete_columns},
-                  {"stopped", stopped},
-                  {"height_capped", r.n_height_capped_columns},
-                  {"gap_limited", r.n_gap_limited_columns},
-                  {"per_layer", r.columns_per_layer}};
-  j["min_visibility"] = r.min_visibility;
+  const nlohmann::json extrusion = extrusion_report_to_json(r);
+  for (auto it = extrusion.begin(); it != extrusion.end(); ++it) j[it.key()] = it.value();
   j["check"] = check_report_to_json(check);
-  j["time_seconds"] = {{"setup", r.t_setup},       {"normals", r.t_normals}, {"proximity", r.t_proximity},
-                       {"checks", r.t_checks},     {"assembly", r.t_assembly}, {"report", r.t_report},
-                       {"extrusion", r.t_total},   {"total", seconds}};
+  j["time_seconds"]["total"] = seconds;
   if (fill)
     j["fill"] = {{"tets", fill->n_tets},
                  {"steiner_points", fill->n_steiner_points},
@@ -189,17 +162,24 @@ nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, 
   return j;
 }
 
-void write_envelope(const ExtrusionResult& result, const std::string& path) {
+void write_envelope(const ExtrusionResult& result, const std::string& path, const VtkWriteOptions& vtk) {
   DataArray layers{"layers", 1, true, {}};
   for (int l : result.column_layers) layers.values.push_back(l);
   DataArray reason{"stop_reason", 1, true, {}};
   for (StopReason s : result.stop_reason) reason.values.push_back(static_cast<int>(s));
-  write_vtp(result.envelope, {layers, reason}, {}, path);
+  write_vtp(result.envelope, {layers, reason}, {}, path, vtk);
 }
 
-void write_boundary(const MarkedBoundary& b, const std::string& path) {
+void write_boundary(const MarkedBoundary& b, const std::string& path, const VtkWriteOptions& vtk) {
   DataArray marker{"marker", 1, true, std::vector<double>(b.marker.begin(), b.marker.end())};
-  write_vtp(b.surface, {}, {marker}, path);
+  write_vtp(b.surface, {}, {marker}, path, vtk);
+}
+
+void print_patches(const std::vector<BoundaryPatch>& patches) {
+  if (patches.empty()) return;
+  std::printf("boundary patches:");
+  for (const BoundaryPatch& p : patches) std::printf(" %s (%zu faces)", p.name.c_str(), p.size);
+  std::printf("\n");
 }
 
 void print_written(const ExtrudeOutputs& o, const MeshCheckReport& check, double check_seconds, double total_seconds) {
@@ -235,6 +215,8 @@ int run_extrude_command(const ParamValues& params) {
   ExtrusionResult result = extrude_layers(prepared.surface, ep, progress_bar());
   const std::size_t n_layer_cells = result.mesh.n_cells();
   std::printf("%s", format_extrusion_report(result.report).c_str());
+  const std::string thin = thickness_warning(result.report);
+  if (!thin.empty()) std::printf("warning: %s\n", thin.c_str());
   std::optional<FilledRegion> filled;
   if (params.get_bool("fill")) filled = fill_beyond_layers(params, surface_opt.side, result);
 
@@ -242,11 +224,13 @@ int run_extrude_command(const ParamValues& params) {
   const MeshCheckReport check = decide_validity(result.mesh);
   const double check_seconds = check_time.seconds();
 
-  write_vtu(result.mesh, out.mesh_tmp);
-  if (!out.envelope.empty()) write_envelope(result, out.envelope_tmp);
-  if (!out.boundary.empty())
-    write_boundary(hybrid_boundary(result.mesh, prepared.surface, filled->fill, filled->fill_to_mesh),
-                   out.boundary_tmp);
+  std::optional<MarkedBoundary> boundary;
+  if (filled) boundary = hybrid_boundary(result.mesh, prepared.surface, filled->fill, filled->fill_to_mesh);
+  PatchSources patch_sources{&prepared.surface, boundary ? &*boundary : nullptr, &result.envelope,
+                             &result.envelope_point_ids};
+  const std::vector<BoundaryPatch> patches = write_mesh_output(out.mesh_staged, result.mesh, patch_sources, out.vtk);
+  if (!out.envelope.empty()) write_envelope(result, out.envelope_tmp, out.vtk);
+  if (!out.boundary.empty()) write_boundary(*boundary, out.boundary_tmp, out.vtk);
   if (!out.report.empty())
     write_text_file(out.report_tmp,
                     report_json(params, result.report, check, n_layer_cells, filled ? &filled->fill.stats : nullptr,
@@ -255,7 +239,17 @@ int run_extrude_command(const ParamValues& params) {
                         "\n",
                     out.report);
   outputs.commit();
+  print_patches(patches);
   print_written(out, check, check_seconds, total.seconds());
+  // A valid, written mesh that is thinner than the user requires: its own exit status.
+  const double required = params.get_real("require-thickness");
+  const double reached = 1.0 - result.report.thin.total_columns;
+  if (required > 0.0 && reached < required) {
+    std::printf("error: %.2f %% of the columns reach 90 %% of the thickness, fewer than --require-thickness %.4g "
+                "asks (the mesh is written)\n",
+                100.0 * reached, required);
+    return kExitThicknessNotReached;
+  }
   return 0;
 }
 

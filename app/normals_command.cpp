@@ -9,6 +9,7 @@
 #include "blayer/core/stopwatch.h"
 #include "blayer/io/prepare_surface.h"
 #include "blayer/io/vtk_io.h"
+#include "mesh_output.h"
 #include "blayer/normals/point_normals.h"
 #include "commands.h"
 #include "surface_options.h"
@@ -49,7 +50,7 @@ int run_normals_command(const ParamValues& params) {
     nd.values.push_back(pn.normality[i] * kRadToDeg);
     st.values.push_back(static_cast<int>(pn.status[i]));
   }
-  write_vtp(s, {normal, vis, nd, st}, {}, output);
+  write_vtp(s, {normal, vis, nd, st}, {}, output, vtk_write_options(params));
 
   std::map<int, int> per_status;
   for (NormalStatus x : pn.status) ++per_status[static_cast<int>(x)];

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Same-run comparison with Gmsh's plain boundary-layer extrusion (no collision, inversion
-# or corner handling) on one surface: wall time and peak memory of both, and blayer's
-# check of both meshes. Usage:
+# or corner handling) on one surface: wall time and peak memory of both, blayer's check of
+# both meshes, and the layer fidelity of both (first height against h1 and thickness
+# against T per column, above the wall planes and as distance to the wall: blayer check
+# --wall). Both mesh the same STL, so their wall points agree to the bit. Usage:
 #   bench/compare_gmsh.sh SURFACE.off[.gz] [layers=10] [ratio=1.2]
 # The first height is 2e-4 x the bounding-box diagonal. Needs gmsh
 # (scripts/install-deps.sh --extras) and a built blayer (scripts/build.sh blayer).
@@ -40,11 +42,12 @@ source "$root/bench/measure.sh"
 
 echo "surface $surface: N=$layers h1=$h1 r=$ratio"
 (cd "$work" && measure gmsh gmsh "$name.geo" -3 -format vtk -o "$work/gmsh.vtk")
-measure blayer "$blayer" extrude "$surface" -o "$work/blayer.vtu" --layers "$layers" --first-height "$h1" \
-  --growth-ratio "$ratio"
+measure blayer "$blayer" extrude "$work/$name.stl" -o "$work/blayer.vtu" --layers "$layers" --first-height "$h1" \
+  --growth-ratio "$ratio" ${BLAYER_ARGS:-}
 echo "ratio blayer/gmsh wall time: $(ratio blayer gmsh)"
+law=(--wall "$work/$name.stl" --layers "$layers" --first-height "$h1" --growth-ratio "$ratio")
 echo "--- blayer check of Gmsh's mesh:"
-"$blayer" check "$work/gmsh.vtk" | grep -E "^(cells:|inverted:|min_corner)" || true
+"$blayer" check "$work/gmsh.vtk" "${law[@]}" | grep -E "^(cells:|inverted:|min_corner|  fidelity|    )" || true
 echo "--- blayer check of blayer's mesh:"
-"$blayer" check "$work/blayer.vtu" | grep -E "^(cells:|inverted:|min_corner|  time:)" || true
+"$blayer" check "$work/blayer.vtu" "${law[@]}" | grep -E "^(cells:|inverted:|min_corner|  time:|  fidelity|    )" || true
 grep -E "^(coverage|columns|time)" "$work/blayer.log" || true

@@ -2,14 +2,13 @@
 # Installs the Debian 12 packages blayer needs to build and test. Idempotent: packages
 # already present are skipped, and nothing is fetched when all are there.
 # Usage: scripts/install-deps.sh [--extras] [--fuzz]
-#   --extras: gmsh and the picture tools
+#   --extras: the picture and timing tools
 #   --fuzz:   clang with libFuzzer and the sanitizer runtimes, and llvm-symbolizer for
 #             readable reports (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libopenmesh-dev           # surface input (STL/OBJ/OFF/PLY)
   libvtk9-dev               # .vtu/.vtp input and output, cell validator
   libtet1.5-dev             # tetrahedral fill
   libgtest-dev              # tests
@@ -21,11 +20,15 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev  # exact orient3d
   zlib1g-dev
   libxml2-utils             # tests: xmllint checks that every .vtu/.vtp is well-formed XML
-  python3-meshio            # tests: meshio (run by /usr/bin/python3) as an independent .vtu reader
+  python3-meshio            # tests: meshio (run by /usr/bin/python3) as an independent .vtu, .su2 and .msh reader
+  libcgns-dev               # CGNS output
+  cgns-convert              # tests: cgnscheck judges the CGNS output
+  openfoam                  # tests: checkMesh judges the polyMesh output, gmshToFoam reads the MSH output
+  gmsh                      # tests: gmsh re-reads the MSH output
 )
 for option in "$@"; do
   case "$option" in
-    --extras) packages+=(gmsh python3-vtk9 xvfb xauth bc time) ;;
+    --extras) packages+=(python3-vtk9 xvfb xauth bc time) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev llvm-14) ;;
     *) echo "install-deps.sh: unknown option $option" >&2; exit 1 ;;
   esac

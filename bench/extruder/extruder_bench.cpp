@@ -1,10 +1,10 @@
 // Usage: extruder_bench SURFACE [layers=10] [first_height_over_diagonal=2e-4] [ratio=1.2]
-//                       [--cap-length shortest|mean|face] [--cap-ratio x] [--worst k]
+//                       [--limit compress|terminate] [--directions kept|recomputed] [--worst k]
 // Extrudes the layers on a closed surface, read and oriented for external flow by
 // blayer_io as the command line does (any input format, .gz too), and prints
 // the run report, the envelope intersection check and the peak resident set size. The
-// options set ExtrusionParams::height_cap_length and max_height_to_edge_ratio, to
-// compare thickness policies. --worst k lists the k columns whose top lies lowest
+// options set ExtrusionParams::limit_policy and column_directions, to compare
+// policies. --worst k lists the k columns whose top lies lowest
 // against the plane of one of their incident wall faces (the report's thickness
 // measure), with their stop reason, layers, direction and incident face normals, to
 // tell a fold-back from a column that turns at a sharp edge.
@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   auto usage = [&] {
     std::fprintf(stderr,
                  "usage: %s surface.off[.gz] [layers] [first_height/diagonal] [ratio] "
-                 "[--cap-length shortest|mean|face] [--cap-ratio x] [--worst k]\n",
+                 "[--limit compress|terminate] [--directions kept|recomputed] [--worst k]\n",
                  argv[0]);
     return 2;
   };
@@ -74,14 +74,16 @@ int main(int argc, char** argv) {
   int worst = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--cap-length" && i + 1 < argc) {
+    if (a == "--limit" && i + 1 < argc) {
       const std::string v = argv[++i];
-      if (v == "shortest") p.height_cap_length = blayer::HeightCapLength::kShortestEdge;
-      else if (v == "mean") p.height_cap_length = blayer::HeightCapLength::kMeanEdge;
-      else if (v == "face") p.height_cap_length = blayer::HeightCapLength::kFaceSize;
+      if (v == "compress") p.limit_policy = blayer::LimitPolicy::kCompress;
+      else if (v == "terminate") p.limit_policy = blayer::LimitPolicy::kTerminate;
       else return usage();
-    } else if (a == "--cap-ratio" && i + 1 < argc) {
-      p.max_height_to_edge_ratio = std::atof(argv[++i]);
+    } else if (a == "--directions" && i + 1 < argc) {
+      const std::string v = argv[++i];
+      if (v == "kept") p.column_directions = blayer::ColumnDirections::kKept;
+      else if (v == "recomputed") p.column_directions = blayer::ColumnDirections::kRecomputed;
+      else return usage();
     } else if (a == "--worst" && i + 1 < argc) {
       worst = std::atoi(argv[++i]);
     } else if (a.rfind("--", 0) == 0) {

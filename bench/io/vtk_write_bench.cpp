@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/stacked_prisms.h"
 #include "blayer/io/vtk_io.h"
 #include "blayer/quality/mesh_check.h"
 
@@ -41,47 +42,22 @@ namespace {
 
 blayer::VolumeMesh make_prism_mesh(int n, int layers) {
   blayer::VolumeMesh m;
-  const int np = n + 1;
-  const double h0 = 1e-3;
   blayer::DataArray normal{"normal", 3, false, {}};
   blayer::DataArray height{"column_height", 1, false, {}};
   blayer::DataArray reason{"stop_reason", 1, true, {}};
   blayer::DataArray n_layers{"layers", 1, true, {}};
-  const double total = h0 * (std::pow(1.2, layers) - 1.0) / 0.2;
-  for (int k = 0; k <= layers; ++k) {
-    const double z = h0 * (std::pow(1.2, k) - 1.0) / 0.2;
-    for (int j = 0; j < np; ++j)
-      for (int i = 0; i < np; ++i) {
-        const double x = static_cast<double>(i) / n, y = static_cast<double>(j) / n;
-        m.points.push_back({x, y, 0.05 * std::sin(6.0 * x) * std::cos(4.0 * y) + z});
-        // The wall normal of the wavy surface, so the array is as varied as a real one.
-        const double gx = -0.3 * std::cos(6.0 * x) * std::cos(4.0 * y), gy = 0.2 * std::sin(6.0 * x) * std::sin(4.0 * y);
-        const double len = std::sqrt(gx * gx + gy * gy + 1.0);
-        normal.values.insert(normal.values.end(), {gx / len, gy / len, 1.0 / len});
-        height.values.push_back(total);
-        reason.values.push_back(0);
-        n_layers.values.push_back(layers);
-      }
-  }
+  const double total = 1e-3 * (std::pow(1.2, layers) - 1.0) / 0.2;
+  blayer::bench::add_stacked_points(m, n, layers, [&](double x, double y, double) {
+    // The wall normal of the wavy surface, so the array is as varied as a real one.
+    const double gx = -0.3 * std::cos(6.0 * x) * std::cos(4.0 * y), gy = 0.2 * std::sin(6.0 * x) * std::sin(4.0 * y);
+    const double len = std::sqrt(gx * gx + gy * gy + 1.0);
+    normal.values.insert(normal.values.end(), {gx / len, gy / len, 1.0 / len});
+    height.values.push_back(total);
+    reason.values.push_back(0);
+    n_layers.values.push_back(layers);
+  });
   m.point_data = {std::move(normal), std::move(height), std::move(reason), std::move(n_layers)};
-  m.cell_types.reserve(static_cast<std::size_t>(2) * n * n * layers);
-  m.connectivity.reserve(static_cast<std::size_t>(12) * n * n * layers);
-  blayer::DataArray layer{"layer", 1, true, {}};
-  auto id = [&](int k, int i, int j) { return static_cast<std::int64_t>(k) * np * np + static_cast<std::int64_t>(j) * np + i; };
-  for (int k = 0; k < layers; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        // Wall triangles (a,b,c) with +z normals, written (a, c, b, a', c', b').
-        const int tri[2][3][2] = {{{i, j}, {i + 1, j}, {i + 1, j + 1}}, {{i, j}, {i + 1, j + 1}, {i, j + 1}}};
-        for (const auto& t : tri) {
-          const std::int64_t nodes[6] = {id(k, t[0][0], t[0][1]),     id(k, t[2][0], t[2][1]),
-                                         id(k, t[1][0], t[1][1]),     id(k + 1, t[0][0], t[0][1]),
-                                         id(k + 1, t[2][0], t[2][1]), id(k + 1, t[1][0], t[1][1])};
-          m.add_cell(blayer::CellType::kWedge, nodes);
-          layer.values.push_back(k);
-        }
-      }
-  m.cell_data.push_back(std::move(layer));
+  blayer::bench::add_stacked_wedges(m, n, layers);
   blayer::add_quality_arrays(m);
   return m;
 }

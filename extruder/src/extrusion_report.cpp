@@ -1,8 +1,12 @@
+#include "blayer/extruder/extrusion_report.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <string>
-
-#include "blayer/extruder/extrude_layers.h"
+#include <utility>
 
 namespace blayer {
 
@@ -19,7 +23,143 @@ void line(std::string* out, const char* fmt, ...) {
   *out += '\n';
 }
 
+// Running min / mean / max.
+struct RangeAccumulator {
+  RangeStats s{HUGE_VAL, 0.0, -HUGE_VAL};
+  int n = 0;
+  void add(double x) {
+    s.min = std::min(s.min, x);
+    s.max = std::max(s.max, x);
+    s.mean += x;
+    ++n;
+  }
+  RangeStats result() const {
+    if (n == 0) return RangeStats{};
+    RangeStats r = s;
+    r.mean /= n;
+    return r;
+  }
+};
+
+void count_cells(const VolumeMesh& mesh, ExtrusionReport* r) {
+  for (CellType t : mesh.cell_types) {
+    switch (t) {
+      case CellType::kWedge: ++r->n_wedges; break;
+      case CellType::kPyramid: ++r->n_pyramids; break;
+      case CellType::kTet: ++r->n_tets; break;
+      case CellType::kHex: break;
+    }
+  }
+  r->n_points = static_cast<std::int64_t>(mesh.points.size());
+}
+
+// Heights above the wall (min over incident wall face planes), achieved thickness
+// fractions and stops per reason.
+void summarise_heights(const TriSurface& wall, const WallTopology& topo, const ColumnPlan& plan,
+                       const ColumnState& columns, const VolumeMesh& mesh, ExtrusionReport* r) {
+  const int nv = topo.n_points(), nf = static_cast<int>(wall.triangles.size());
+  std::vector<Vec3> wall_fn(nf);
+  tbb::parallel_for(0, nf, [&](int f) { wall_fn[f] = normalized(triangle_area_vector(wall, wall.triangles[f])); });
+  const Csr& vtri = topo.vertex_triangles;
+  auto height_above = [&](int v, const Vec3& q) {
+    double m = HUGE_VAL;
+    for (const int* f = vtri.begin(v); f != vtri.end(v); ++f) m = std::min(m, dot(q - wall.points[v], wall_fn[*f]));
+    return m;
+  };
+  std::vector<double> column_area(nv, 0.0);
+  for (const Triangle& t : wall.triangles) {
+    const double a = 0.5 * norm(triangle_area_vector(wall, t)) / 3.0;
+    for (int v : t) column_area[v] += a;
+  }
+  double total_area = 0.0;
+  int n_used = 0;
+  RangeAccumulator fh, th, tf;
+  for (int v = 0; v < nv; ++v) {
+    if (!topo.used[v]) continue;
+    ++n_used;
+    total_area += column_area[v];
+    const double total = columns.layers[v] > 0 ? height_above(v, columns.top[v]) : 0.0;
+    th.add(total);
+    tf.add(total / plan.target_total[v]);
+    if (columns.layers[v] > 0) fh.add(height_above(v, columns.first[v]));
+    if (columns.layers[v] == r->growth.layers) ++r->n_complete_columns;
+    else ++r->stopped_columns[static_cast<int>(columns.reason[v])];
+    if (plan.limit[v] != StopReason::kNone) ++r->limited_columns[static_cast<int>(plan.limit[v])];
+    if (total < kThicknessReachedFraction * plan.target_total[v]) {
+      const int why = static_cast<int>(plan.limit[v] != StopReason::kNone ? plan.limit[v] : columns.reason[v]);
+      r->thin.columns[why] += 1.0;
+      r->thin.area[why] += column_area[v];
+    }
+  }
+  for (int i = 0; i < kStopReasonCount; ++i) {
+    r->thin.columns[i] = n_used > 0 ? r->thin.columns[i] / n_used : 0.0;
+    r->thin.area[i] = total_area > 0.0 ? r->thin.area[i] / total_area : 0.0;
+    r->thin.total_columns += r->thin.columns[i];
+    r->thin.total_area += r->thin.area[i];
+  }
+  r->first_height = fh.result();
+  r->total_thickness = th.result();
+  r->thickness_fraction = tf.result();
+  (void)mesh;
+}
+
+void summarise_coverage(const TriSurface& wall, const ColumnState& columns, ExtrusionReport* r) {
+  const int n = r->growth.layers;
+  double area = 0.0, area_full = 0.0;
+  int n_full = 0;
+  for (const Triangle& t : wall.triangles) {
+    const double a = 0.5 * norm(triangle_area_vector(wall, t));
+    area += a;
+    if (columns.layers[t[0]] == n && columns.layers[t[1]] == n && columns.layers[t[2]] == n) {
+      ++n_full;
+      area_full += a;
+    }
+  }
+  const int nf = static_cast<int>(wall.triangles.size());
+  r->coverage = nf > 0 ? double(n_full) / nf : 0.0;
+  r->area_coverage = area > 0.0 ? area_full / area : 0.0;
+}
+
+// One decimal from 1 % up, two significant digits below, so small shares do not read 0.0 %.
+std::string percent(double x) {
+  char buf[32];
+  if (100.0 * x >= 1.0 || x == 0.0)
+    std::snprintf(buf, sizeof buf, "%.1f %%", 100.0 * x);
+  else
+    std::snprintf(buf, sizeof buf, "%.2g %%", 100.0 * x);
+  return buf;
+}
+
 }  // namespace
+
+void summarise_extrusion(const TriSurface& wall, const WallTopology& topo, const ColumnPlan& plan,
+                         const ColumnState& columns, const VolumeMesh& mesh, ExtrusionReport* r) {
+  count_cells(mesh, r);
+  summarise_heights(wall, topo, plan, columns, mesh, r);
+  summarise_coverage(wall, columns, r);
+  if (!r->growth.relative) {
+    r->fidelity = measure_layer_fidelity(mesh, wall,
+                                         {r->growth.first_height, r->growth.total_thickness, r->growth.layers});
+    r->fidelity.columns.clear();
+    r->has_fidelity = true;
+  }
+}
+
+std::string thickness_warning(const ExtrusionReport& r) {
+  if (r.complete()) return "";
+  std::string s = percent(r.thin.total_area) + " of the wall (" + percent(r.thin.total_columns) +
+                  " of the columns) got less than 90 % of the thickness:";
+  std::vector<std::pair<double, int>> order;
+  for (int i = 0; i < kStopReasonCount; ++i)
+    if (r.thin.area[i] > 0.0 || r.thin.columns[i] > 0.0) order.push_back({r.thin.area[i], i});
+  std::sort(order.rbegin(), order.rend());
+  for (std::size_t j = 0; j < order.size(); ++j) {
+    const int i = order[j].second;
+    s += (j ? ", " : " ") + percent(r.thin.area[i]) + " " +
+         (i == 0 ? std::string("other") : std::string(stop_reason_name(static_cast<StopReason>(i))));
+  }
+  return s;
+}
 
 std::string format_extrusion_report(const ExtrusionReport& r) {
   std::string s;
@@ -33,24 +173,93 @@ std::string format_extrusion_report(const ExtrusionReport& r) {
        r.thickness_fraction.mean, r.thickness_fraction.max);
   line(&s, "coverage            %.4f of triangles, %.4f of area carry all %d layers", r.coverage, r.area_coverage,
        r.growth.layers);
-  line(&s, "columns             %d complete; stopped: collision %d, quality %d, proximity %d, visibility %d",
-       r.n_complete_columns, r.stopped_columns[1], r.stopped_columns[2], r.stopped_columns[3],
-       r.stopped_columns[4]);
-  line(&s, "limited columns     %d by max_height_to_edge_ratio, %d by the wall gap", r.n_height_capped_columns,
-       r.n_gap_limited_columns);
+  std::string stopped, limited;
+  for (int i = 1; i < kStopReasonCount; ++i) {
+    const char* name = stop_reason_name(static_cast<StopReason>(i));
+    if (r.stopped_columns[i]) stopped += std::string(" ") + name + " " + std::to_string(r.stopped_columns[i]);
+    if (r.limited_columns[i]) limited += std::string(" ") + name + " " + std::to_string(r.limited_columns[i]);
+  }
+  line(&s, "columns             %d complete; stopped:%s", r.n_complete_columns, stopped.empty() ? " none" : stopped.c_str());
+  line(&s, "limited columns    %s", limited.empty() ? " none" : limited.c_str());
+  if (r.has_fidelity) {
+    const LayerFidelity& f = r.fidelity;
+    line(&s, "first height / h1   p1 %.4f  p50 %.4f  p99 %.4f above the wall planes; within 1 %%: %s of the columns",
+         f.first_over_h1_planes.p1, f.first_over_h1_planes.p50, f.first_over_h1_planes.p99,
+         percent(f.first_within_1pct_planes).c_str());
+    line(&s, "                    p1 %.4f  p50 %.4f  p99 %.4f as distance to the wall; within 1 %%: %s",
+         f.first_over_h1_distance.p1, f.first_over_h1_distance.p50, f.first_over_h1_distance.p99,
+         percent(f.first_within_1pct_distance).c_str());
+    line(&s, "thickness / T       p5 %.4f  p50 %.4f above the planes, p5 %.4f  p50 %.4f as distance; >= 0.9 T: %s / %s",
+         f.top_over_T_planes.p5, f.top_over_T_planes.p50, f.top_over_T_distance.p5, f.top_over_T_distance.p50,
+         percent(f.top_ge_90pct_planes).c_str(), percent(f.top_ge_90pct_distance).c_str());
+  }
   std::string per_layer;
   for (int n : r.columns_per_layer) per_layer += " " + std::to_string(n);
   line(&s, "columns per layer  %s", per_layer.c_str());
   line(&s, "cells               %lld wedges, %lld pyramids, %lld tets; %lld points",
        static_cast<long long>(r.n_wedges), static_cast<long long>(r.n_pyramids), static_cast<long long>(r.n_tets),
        static_cast<long long>(r.n_points));
-  line(&s, "validity            %lld invalid cells (exact corner-tet check)", static_cast<long long>(r.n_invalid_cells));
-  line(&s, "min scaled jacobian %.4f", r.min_scaled_jacobian);
   line(&s, "min visibility      %.4f", r.min_visibility);
   line(&s, "time [s]            setup %.3f  normals %.3f  proximity %.3f  checks %.3f  assembly %.3f  report %.3f  "
        "total %.3f",
        r.t_setup, r.t_normals, r.t_proximity, r.t_checks, r.t_assembly, r.t_report, r.t_total);
   return s;
+}
+
+}  // namespace blayer
+
+namespace blayer {
+
+namespace {
+
+nlohmann::json range_json(const RangeStats& r) { return {{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; }
+
+nlohmann::json by_reason(const std::array<double, kStopReasonCount>& a) {
+  nlohmann::json j = nlohmann::json::object();
+  for (int i = 0; i < kStopReasonCount; ++i)
+    if (a[i] > 0.0) j[i == 0 ? "other" : stop_reason_name(static_cast<StopReason>(i))] = a[i];
+  return j;
+}
+
+nlohmann::json counts_by_reason(const std::array<int, kStopReasonCount>& a) {
+  nlohmann::json j = nlohmann::json::object();
+  for (int i = 1; i < kStopReasonCount; ++i) j[stop_reason_name(static_cast<StopReason>(i))] = a[i];
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json extrusion_report_to_json(const ExtrusionReport& r) {
+  nlohmann::json j;
+  j["growth_law"] = {{"layers", r.growth.layers},
+                     {"first_height", r.growth.first_height},
+                     {"last_height", r.growth.last_height},
+                     {"total_thickness", r.growth.total_thickness},
+                     {"growth_ratio", r.growth.growth_ratio},
+                     {"relative", r.growth.relative}};
+  j["wall"] = {{"points", r.n_wall_points}, {"triangles", r.n_wall_triangles}};
+  j["achieved"] = {{"first_height", range_json(r.first_height)},
+                   {"total_thickness", range_json(r.total_thickness)},
+                   {"thickness_fraction", range_json(r.thickness_fraction)}};
+  if (r.has_fidelity) j["fidelity"] = layer_fidelity_to_json(r.fidelity);
+  j["coverage"] = r.coverage;
+  j["area_coverage"] = r.area_coverage;
+  j["columns"] = {{"complete", r.n_complete_columns},
+                  {"stopped", counts_by_reason(r.stopped_columns)},
+                  {"limited", counts_by_reason(r.limited_columns)},
+                  {"turned_directions", r.n_turned_directions},
+                  {"per_layer", r.columns_per_layer}};
+  j["verdict"] = {{"outcome", r.complete() ? "complete" : "limited"},
+                  {"thin_columns", r.thin.total_columns},
+                  {"thin_area", r.thin.total_area},
+                  {"thin_columns_by_reason", by_reason(r.thin.columns)},
+                  {"thin_area_by_reason", by_reason(r.thin.area)}};
+  j["cells"] = {{"wedges", r.n_wedges}, {"pyramids", r.n_pyramids}, {"tets", r.n_tets}, {"points", r.n_points}};
+  j["min_visibility"] = r.min_visibility;
+  j["time_seconds"] = {{"setup", r.t_setup},   {"normals", r.t_normals},   {"proximity", r.t_proximity},
+                       {"checks", r.t_checks}, {"assembly", r.t_assembly}, {"report", r.t_report},
+                       {"extrusion", r.t_total}};
+  return j;
 }
 
 }  // namespace blayer

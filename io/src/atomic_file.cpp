@@ -24,8 +24,35 @@ std::string unique_temp_path(const std::string& prefix, const std::string& suffi
   }
 }
 
+namespace {
+
+// Removes a temporary file or directory, ignoring failures (it may not exist yet).
+void remove_temporary(const std::string& path) {
+  std::error_code ec;
+  fs::remove_all(path, ec);
+}
+
+// rename() that also replaces an existing directory: the old one is moved aside first
+// and removed only once the new one is in place.
+int rename_onto(const std::string& temp, const std::string& target) {
+  std::error_code ec;
+  if (!fs::is_directory(temp, ec) || !fs::is_directory(target, ec)) return std::rename(temp.c_str(), target.c_str());
+  const std::string aside = unique_temp_path(target + ".old", "");
+  if (std::rename(target.c_str(), aside.c_str()) != 0) return -1;
+  if (std::rename(temp.c_str(), target.c_str()) != 0) {
+    const int saved = errno;
+    std::rename(aside.c_str(), target.c_str());
+    errno = saved;
+    return -1;
+  }
+  remove_temporary(aside);
+  return 0;
+}
+
+}  // namespace
+
 AtomicOutputs::~AtomicOutputs() {
-  for (std::size_t i = n_committed_; i < staged_.size(); ++i) std::remove(staged_[i].second.c_str());
+  for (std::size_t i = n_committed_; i < staged_.size(); ++i) remove_temporary(staged_[i].second);
 }
 
 std::string AtomicOutputs::stage(const std::string& target) {
@@ -39,16 +66,24 @@ std::string AtomicOutputs::stage(const std::string& target) {
   return staged_.back().second;
 }
 
+std::string AtomicOutputs::stage_directory(const std::string& target) {
+  const std::string temp = stage(target);
+  std::error_code ec;
+  if (!fs::create_directory(temp, ec))
+    throw IoError(target + ": cannot create a directory next to it (" + ec.message() + ")");
+  return temp;
+}
+
 void AtomicOutputs::commit() {
   for (; n_committed_ < staged_.size(); ++n_committed_) {
     const auto& [target, temp] = staged_[n_committed_];
-    if (std::rename(temp.c_str(), target.c_str()) == 0) continue;
+    if (rename_onto(temp, target) == 0) continue;
     std::string message = target + ": cannot write (" + std::strerror(errno) + ")";
     if (n_committed_ > 0) {
       message += "; already written:";
       for (std::size_t i = 0; i < n_committed_; ++i) message += " " + staged_[i].first;
     }
-    for (std::size_t i = n_committed_; i < staged_.size(); ++i) std::remove(staged_[i].second.c_str());
+    for (std::size_t i = n_committed_; i < staged_.size(); ++i) remove_temporary(staged_[i].second);
     n_committed_ = staged_.size();  // nothing left for the destructor
     throw IoError(message);
   }

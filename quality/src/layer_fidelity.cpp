@@ -1,10 +1,13 @@
 #include "blayer/quality/layer_fidelity.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 #include "nearest_triangle.h"
 
@@ -207,6 +210,79 @@ nlohmann::json layer_fidelity_to_json(const LayerFidelity& f) {
   j["complete_share"] = f.complete_share;
   j["area_coverage"] = f.area_coverage;
   return j;
+}
+
+VolumeMesh with_wall_points_first(const VolumeMesh& mesh, const TriSurface& wall) {
+  // Points are matched within kMatchRelTol of the wall's bounding-box diagonal, and the
+  // matched points take the wall's coordinates, which the measure is against: other
+  // meshers read the same file with other parsers (a float and a double reading of an
+  // ASCII STL differ by ~1e-7 relative), and no two distinct points of a layer mesh are
+  // that close (the first height alone is ~1e-4 of the diagonal).
+  constexpr double kMatchRelTol = 1e-6;
+  Vec3 lo = wall.points.empty() ? Vec3{0, 0, 0} : wall.points[0], hi = lo;
+  for (const Vec3& p : wall.points)
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], p[i]);
+      hi[i] = std::max(hi[i], p[i]);
+    }
+  const double tol = std::max(kMatchRelTol * norm(hi - lo), std::numeric_limits<double>::min());
+  using Cell = std::array<long long, 3>;
+  struct CellHash {
+    std::size_t operator()(const Cell& c) const {
+      return static_cast<std::size_t>(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
+    }
+  };
+  auto cell_of = [&](const Vec3& q) {
+    return Cell{static_cast<long long>(std::floor(q[0] / tol)), static_cast<long long>(std::floor(q[1] / tol)),
+                static_cast<long long>(std::floor(q[2] / tol))};
+  };
+  std::unordered_map<Cell, std::vector<std::int64_t>, CellHash> grid;
+  grid.reserve(mesh.points.size());
+  for (std::size_t p = 0; p < mesh.points.size(); ++p) grid[cell_of(mesh.points[p])].push_back(static_cast<std::int64_t>(p));
+  auto nearest = [&](const Vec3& w) {
+    const Cell c = cell_of(w);
+    std::int64_t best = -1;
+    double best_d = tol;
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find(Cell{c[0] + dx, c[1] + dy, c[2] + dz});
+          if (it == grid.end()) continue;
+          for (std::int64_t p : it->second) {
+            const double d = norm(mesh.points[p] - w);
+            if (d <= best_d) {
+              best_d = d;
+              best = p;
+            }
+          }
+        }
+    return best;
+  };
+  const std::int64_t nv = static_cast<std::int64_t>(wall.points.size());
+  std::vector<std::int64_t> renumber(mesh.points.size(), -1);
+  for (std::int64_t v = 0; v < nv; ++v) {
+    const std::int64_t p = nearest(wall.points[v]);
+    if (p < 0) throw std::invalid_argument("wall point " + std::to_string(v) + " is not a point of the mesh");
+    if (renumber[p] < 0) renumber[p] = v;
+  }
+  VolumeMesh out;
+  out.points = wall.points;
+  std::int64_t next = nv;
+  for (std::size_t p = 0; p < mesh.points.size(); ++p)
+    if (renumber[p] < 0) {
+      renumber[p] = next++;
+      out.points.push_back(mesh.points[p]);
+    }
+  out.points.resize(next);
+  for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
+    std::int64_t nodes[8];
+    const std::int64_t o = mesh.offsets[c];
+    const int n = corner_count(mesh.cell_types[c]);
+    for (int i = 0; i < n; ++i) nodes[i] = renumber[mesh.connectivity[o + i]];
+    out.add_cell(mesh.cell_types[c], nodes);
+  }
+  out.cell_data = mesh.cell_data;
+  return out;
 }
 
 }  // namespace blayer

@@ -8,6 +8,7 @@
 
 #include "../io/temp_dir.h"
 #include "blayer/core/errors.h"
+#include "commands.h"
 #include "parameters.h"
 #include "run_cli.h"
 
@@ -138,7 +139,9 @@ TEST(ParameterRanges, ValuesAtTheEdgesOfEachRangeAreAcceptedByTheLibrary) {
       const auto r = run_blayer("extrude " + dir.file("t.off") + " -o " + dir.file("o.vtu") + " --first-height 0.01 --" +
                                     p.name + " " + v,
                                 dir.file(""), 120);
-      EXPECT_EQ(r.status, 0) << "--" << p.name << " " << v << ":\n" << r.err;
+      // Status 3 (the mesh is written but thinner than --require-thickness asks) is an
+      // outcome of the run, not a refusal of the value.
+      EXPECT_TRUE(r.status == 0 || r.status == kExitThicknessNotReached) << "--" << p.name << " " << v << ":\n" << r.err;
     }
   }
 }

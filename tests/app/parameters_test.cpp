@@ -34,12 +34,21 @@ TEST(Parameters, ReadmeListsTheTableAsGenerated) {
 namespace blayer {
 namespace {
 
-TEST(Parameters, HeightCapLengthDefaultIsTheEngines) {
-  for (const ParamSpec& p : parameter_table())
-    if (p.name == "height-cap-length") {
-      EXPECT_EQ(p.default_value, "shortest");
-      EXPECT_EQ(ExtrusionParams{}.height_cap_length, HeightCapLength::kShortestEdge);
+TEST(Parameters, ChoiceDefaultsAreTheEngines) {
+  int seen = 0;
+  for (const ParamSpec& p : parameter_table()) {
+    if (p.name == "column-directions") {
+      ++seen;
+      EXPECT_EQ(p.default_value, "kept");
+      EXPECT_EQ(ExtrusionParams{}.column_directions, ColumnDirections::kKept);
     }
+    if (p.name == "limit") {
+      ++seen;
+      EXPECT_EQ(p.default_value, "compress");
+      EXPECT_EQ(ExtrusionParams{}.limit_policy, LimitPolicy::kCompress);
+    }
+  }
+  EXPECT_EQ(seen, 2);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// Small analytic closed surfaces built in code, shared by the test suites: icosphere,
-// subdivided box, reversed orientation, union of two surfaces.
+// Small analytic surfaces built in code, shared by the test suites: icosphere,
+// subdivided box, flat square plate (open), reversed orientation, union of two surfaces.
 #pragma once
 
 #include <algorithm>
@@ -12,6 +12,22 @@
 #include "blayer/core/surface.h"
 
 namespace blayer::test_surfaces {
+
+// A flat square plate in z = 0 of side `size`, n x n squares each split into two
+// triangles facing +z (open: its border is a boundary). Point (i, j) has index
+// plate_index(n, i, j).
+inline int plate_index(int n, int i, int j) { return j * (n + 1) + i; }
+inline TriSurface square_plate(int n, double size) {
+  TriSurface s;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) s.points.push_back({size * i / n, size * j / n, 0.0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.triangles.push_back({plate_index(n, i, j), plate_index(n, i + 1, j), plate_index(n, i + 1, j + 1)});
+      s.triangles.push_back({plate_index(n, i, j), plate_index(n, i + 1, j + 1), plate_index(n, i, j + 1)});
+    }
+  return s;
+}
 
 // Icosphere of the given radius and centre: the icosahedron with each triangle split
 // into four `levels` times, points projected onto the sphere. Normals point outward.

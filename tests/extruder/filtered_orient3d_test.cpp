@@ -8,16 +8,14 @@
 
 #include "blayer/extruder/triangle_intersections.h"
 #include "blayer/quality/orient3d.h"
+#include "lcg.h"
 
 namespace blayer {
 namespace {
 
 struct Rng {
-  std::uint64_t state = 987654321;
-  double operator()() {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  }
+  testing::Lcg lcg{987654321};
+  double operator()() { return lcg.uniform(); }
 };
 
 // The filter must give orient3d_sign's answer everywhere, in particular where it cannot

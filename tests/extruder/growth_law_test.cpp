@@ -112,11 +112,17 @@ TEST(GrowthLaw, RejectsTooFewQuantities) {
   EXPECT_THROW(resolve_growth_law(g), InputError);
 }
 
-TEST(GrowthLaw, RejectsTooManyQuantities) {
+// first, last and total all given: one too many.
+GrowthLaw three_heights() {
   GrowthLaw g;
   g.first_height = 0.1;
   g.last_height = 0.2;
   g.total_thickness = 1.0;
+  return g;
+}
+
+TEST(GrowthLaw, RejectsTooManyQuantities) {
+  GrowthLaw g = three_heights();
   EXPECT_THROW(resolve_growth_law(g), InputError);
   g.total_thickness = 0.0;
   g.growth_ratio = 1.2;
@@ -171,10 +177,7 @@ TEST(GrowthLaw, RejectsInconsistentPairs) {
 }
 
 TEST(GrowthLaw, ErrorMessageNamesTheFields) {
-  GrowthLaw g;
-  g.first_height = 0.1;
-  g.last_height = 0.2;
-  g.total_thickness = 1.0;
+  const GrowthLaw g = three_heights();
   try {
     resolve_growth_law(g);
     FAIL() << "expected InputError";

@@ -1,5 +1,5 @@
-// Small analytic surfaces built in code for the extruder tests, and independent mesh
-// checks (exact validity of every cell, face sharing, volumes).
+// Small analytic surfaces built in code for the extruder tests, their parameters, and
+// independent mesh checks (exact validity of every cell, face sharing, volumes).
 #pragma once
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 
 #include "blayer/core/surface.h"
 #include "blayer/core/volume_mesh.h"
+#include "blayer/extruder/extrusion_params.h"
 #include "blayer/quality/cell_validity.h"
 #include "blayer/quality/orient3d.h"
 #include "analytic_surfaces.h"
@@ -19,6 +20,16 @@ namespace blayer::test {
 
 using test_surfaces::flipped;
 using test_surfaces::icosphere;
+using test_surfaces::square_plate;
+
+// Parameters with the growth law N layers from first height h1 growing by ratio r.
+inline ExtrusionParams growth_params(int n, double h1, double r) {
+  ExtrusionParams p;
+  p.growth.layers = n;
+  p.growth.first_height = h1;
+  p.growth.growth_ratio = r;
+  return p;
+}
 
 // Boundary of a union of unit voxels (i,j,k) in [0,n)^3 where filled(i,j,k), scaled by
 // `cell`; faces outward from the solid. The union must be a manifold solid (no voxels

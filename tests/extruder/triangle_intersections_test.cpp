@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "blayer/extruder/triangle_bvh.h"
+#include "lcg.h"
 
 #include "test_surfaces.h"
 
@@ -69,19 +70,11 @@ TEST(TriangleIntersections, PushingAVertexThroughTheSphereIsFound) {
   EXPECT_FALSE(restricted.empty());
 }
 
-}  // namespace
-}  // namespace blayer
-
-namespace blayer {
-namespace {
 
 // The BVH-based search must find exactly the pairs a brute-force double loop finds.
 TEST(TriangleIntersections, TreeSearchMatchesBruteForceOnRandomTriangles) {
-  std::uint64_t state = 12345;
-  auto rnd = [&]() {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
+  testing::Lcg lcg(12345);
+  auto rnd = [&]() { return lcg.uniform(); };
   std::vector<Vec3> pts;
   std::vector<IndexedTriangle> tris;
   for (int i = 0; i < 400; ++i) {
@@ -97,20 +90,12 @@ TEST(TriangleIntersections, TreeSearchMatchesBruteForceOnRandomTriangles) {
   EXPECT_EQ(find_triangle_intersections(pts, tris), brute);
 }
 
-}  // namespace
-}  // namespace blayer
-
-namespace blayer {
-namespace {
 
 // A refitted tree must answer overlap queries for the new boxes exactly like brute
 // force, even when the boxes moved far from the ones its layout was built on.
 TEST(TriangleBvh, RefitAnswersForTheNewBoxes) {
-  std::uint64_t state = 777;
-  auto rnd = [&]() {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
+  testing::Lcg lcg(777);
+  auto rnd = [&]() { return lcg.uniform(); };
   auto random_boxes = [&](double spread) {
     std::vector<Box> b(300);
     for (Box& x : b) {

@@ -91,20 +91,9 @@ std::vector<std::vector<Vec3>> straight_columns(const TriSurface& wall, const st
 }
 
 // Unit square [0,1]^2 at z = 0, n x n quads split into triangles facing +z.
-TriSurface flat_plate(int n) {
-  TriSurface s;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) s.points.push_back({double(i) / n, double(j) / n, 0.0});
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return s;
-}
+TriSurface flat_plate(int n) { return test_surfaces::square_plate(n, 1.0); }
 
-int plate_id(int n, int i, int j) { return j * (n + 1) + i; }
+int plate_id(int n, int i, int j) { return test_surfaces::plate_index(n, i, j); }
 
 std::vector<Vec3> up(const TriSurface& s) { return std::vector<Vec3>(s.points.size(), Vec3{0, 0, 1}); }
 
@@ -344,6 +333,39 @@ TEST(NearestTriangle, DistanceToABoxMatchesItsClosedForm) {
     }
     ASSERT_NEAR(tree.nearest(p).distance, outside ? std::sqrt(e2) : inside, 1e-12) << "trial " << trial;
   }
+}
+
+TEST(LayerFidelity, AForeignMeshWithShuffledAndRoundedPointsMeasuresAsTheOriginal) {
+  // Another mesher's output: the same cells with the points in another order and their
+  // coordinates read by another parser (here: rounded to float).
+  const TriSurface wall = flat_plate(4);
+  const VolumeMesh m = layer_mesh(wall, straight_columns(wall, up(wall), cumulative_heights(kH1, kRatio, kLayers)));
+  const std::size_t np = m.points.size();
+  std::vector<std::int64_t> order(np);
+  for (std::size_t p = 0; p < np; ++p) order[p] = static_cast<std::int64_t>((p * 7919) % np);  // 7919 prime, np = 275
+  ASSERT_NE(np % 7919, 0u);
+  std::vector<std::int64_t> where(np);
+  VolumeMesh foreign;
+  foreign.points.resize(np);
+  for (std::size_t p = 0; p < np; ++p) {
+    where[order[p]] = static_cast<std::int64_t>(p);
+    for (int i = 0; i < 3; ++i) foreign.points[p][i] = static_cast<float>(m.points[order[p]][i]);
+  }
+  for (std::size_t c = 0; c < m.n_cells(); ++c) {
+    std::int64_t nodes[8];
+    for (int i = 0; i < corner_count(m.cell_types[c]); ++i) nodes[i] = where[m.connectivity[m.offsets[c] + i]];
+    foreign.add_cell(m.cell_types[c], nodes);
+  }
+  const LayerFidelity a = measure_layer_fidelity(m, wall, targets());
+  const LayerFidelity b = measure_layer_fidelity(with_wall_points_first(foreign, wall), wall, targets());
+  EXPECT_EQ(b.n_complete, a.n_complete);
+  EXPECT_EQ(b.first_within_1pct_planes, a.first_within_1pct_planes);
+  // Float rounding of the layer points: 1e-7 relative of coordinates ~1, i.e. ~1e-5 of h1.
+  EXPECT_NEAR(b.first_over_h1_planes.min, a.first_over_h1_planes.min, 1e-4);
+  EXPECT_NEAR(b.top_over_T_distance.p50, a.top_over_T_distance.p50, 1e-4);
+  TriSurface moved = wall;
+  moved.points[3][0] += 0.0123;  // no mesh point there
+  EXPECT_THROW(with_wall_points_first(foreign, moved), std::invalid_argument);
 }
 
 TEST(LayerFidelity, PercentilesInterpolateBetweenOrderStatistics) {

@@ -1,5 +1,7 @@
-// Every tolerance blayer uses, each with the reason for its value. Lengths are relative
-// to a local edge length or the bounding-box diagonal; angles are in radians.
+// The tolerances shared by several modules, each with the reason for its value. Lengths
+// are relative to a local edge length or the bounding-box diagonal; angles are in
+// radians. Tolerances of one module are named constants next to their use, with their
+// reasons; docs/tolerances.md lists every tolerance and where it lives.
 #pragma once
 
 namespace blayer {

@@ -82,7 +82,10 @@ class TriangleBvh {
   void for_each_on_segment(const Vec3& origin, const Vec3& dir, double t_max, Visit&& visit) const {
     if (nodes_.empty()) return;
     Vec3 inv;
-    for (int i = 0; i < 3; ++i) inv[i] = 1.0 / dir[i];  // +-inf for axis-parallel rays is intended
+    // +inf for an axis-parallel ray, also when the component is -0.0: 1 / -0.0 = -inf
+    // would turn the slab of a box whose face holds the origin into (+inf, NaN) and
+    // miss it, where (-inf, NaN) keeps it (a NaN bound counts as inside).
+    for (int i = 0; i < 3; ++i) inv[i] = 1.0 / (dir[i] == 0.0 ? 0.0 : dir[i]);
     int stack[128];
     int top = 0;
     stack[top++] = 0;

@@ -9,8 +9,13 @@
 //                  (same directory: rename() is atomic only within one file system;
 //                  same extension: writers that look at it still see it). The caller
 //                  writes the complete file there.
-//   commit()       renames every staged file onto its target, in staging order.
-//   destructor     removes every temporary that was not renamed (an exception on the
+//   stage_directory(target)  the same for a directory output (an OpenFOAM polyMesh):
+//                  creates the temporary directory, which the caller fills.
+//   commit()       renames every staged file onto its target, in staging order. A
+//                  directory that already exists at a directory target is first moved
+//                  aside, then removed once the new one is in place (put back if the
+//                  rename fails).
+//   destructor     removes every temporary (with its content) that was not renamed (an exception on the
 //                  way, or no commit at all): nothing is left behind on failure.
 //
 // A rename failing half way: each rename is atomic, a series of them is not. When the
@@ -40,6 +45,8 @@ class AtomicOutputs {
 
   // Temporary path to write `target` to. Throws IoError when the directory is missing.
   std::string stage(const std::string& target);
+  // Temporary directory, created empty, to fill with `target`'s files. Throws IoError.
+  std::string stage_directory(const std::string& target);
   // Renames every staged file onto its target (see above). Throws IoError on failure.
   void commit();
 

@@ -93,6 +93,14 @@ struct LayerFidelity {
 LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& wall,
                                      const LayerFidelityTargets& targets);
 
+// The mesh renumbered so that its points 0..V-1 are the wall's points, for meshes from
+// other meshers, whose wall points are not first: each wall point is matched to the
+// nearest mesh point within 1e-6 of the wall's bounding-box diagonal (another parser's
+// reading of the same file differs by rounding) and takes the wall's coordinates. Other
+// points follow in their original order; point arrays are dropped. Throws
+// std::invalid_argument naming the first wall point that no mesh point matches.
+VolumeMesh with_wall_points_first(const VolumeMesh& mesh, const TriSurface& wall);
+
 // The summaries (not the per-column data) as a JSON object, keys as the member names
 // with distributions nested: {"first_over_h1": {"planes": {"p50": ...}, "distance": ...},
 // "first_within_1pct_planes": ..., ...}.

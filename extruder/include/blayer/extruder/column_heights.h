@@ -1,0 +1,42 @@
+// Column heights before marching: the growth law on every column (times the local mean
+// edge length when the law is relative), fitted into the gap to the wall that each
+// column faces, and ended where a layer would outgrow the wall spacing when
+// max_layer_aspect is set.
+#pragma once
+
+#include <vector>
+
+#include "blayer/core/surface.h"
+#include "blayer/extruder/column_plan.h"
+#include "blayer/extruder/extrusion_params.h"
+#include "blayer/extruder/proximity_rays.h"
+#include "blayer/extruder/step_directions.h"
+#include "blayer/extruder/wall_topology.h"
+
+namespace blayer {
+
+// Mean and shortest length of the wall edges at each point (0 for unused points).
+struct EdgeLengths {
+  std::vector<double> mean;
+  std::vector<double> shortest;
+};
+EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo);
+
+// The plan before marching:
+//   law        h_k x base (base: 1, or the mean wall edge length at v when relative);
+//   wall gap   a column may cover at most proximity_safety of the distance, along its
+//              wall direction, to the wall part it faces (rays against the wall only):
+//              the budget proximity_safety x gap x V (V: the direction's visibility
+//              over the incident wall faces, so the budget is a height above them) is
+//              smoothed downward over height_smoothing_rings (as a fraction of the
+//              column's target), and the column is compressed into it (compress_from:
+//              the first height is kept; a gap below first height / proximity_safety
+//              plans no layer, reason kWallGap);
+//   aspect     with max_layer_aspect > 0, the column ends before the first layer
+//              higher than max_layer_aspect x the mean wall edge length at v
+//              (reason kAspectRatio).
+ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& topo, const ResolvedGrowthLaw& law,
+                               const ExtrusionParams& p, const StepDirections& wall_directions,
+                               const ProximityRays& wall_rays);
+
+}  // namespace blayer

@@ -1,0 +1,90 @@
+// The per-layer guard that keeps every cell valid while marching: the exact corner-tet
+// test of each new cell, and the exact intersection test of the new front against
+// itself, the current front and the wall. It owns the three triangle trees (wall,
+// current front, new front); the proximity rays borrow the first two.
+//
+// All three surfaces live on one point array ("soup") so that shared points are seen
+// as shared: wall point v -> v, current top v -> nv + v (v itself while the column is
+// still on the wall), new top v -> 2 nv + v (the current id where the column does not
+// grow). A new triangle none of whose columns grows is the current (or wall) triangle
+// itself, already checked, so it is neither tested nor a partner; likewise a current
+// triangle that is still the wall triangle.
+//
+// Incremental re-checks: within a layer, a cell or new triangle is re-tested in a
+// later attempt only if one of its columns moved or changed growing state, or if it
+// failed in the previous attempt; the others are bit-identical to what already passed,
+// so every attempt ends with exactly the verdicts of a full re-check.
+//
+// One tree layout, the wall's, serves every surface of the run (TriangleBvh::refit).
+#pragma once
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "blayer/core/surface.h"
+#include "blayer/extruder/extrusion_params.h"
+#include "blayer/extruder/proximity_rays.h"
+#include "blayer/extruder/triangle_bvh.h"
+#include "blayer/extruder/triangle_intersections.h"
+
+namespace blayer {
+
+// What one attempt found, per column and per wall triangle.
+struct FrontVerdict {
+  std::vector<char> bad;               // column of a failing cell or colliding triangle
+  std::vector<StopReason> reason;      // kQuality (a failing cell) before kCollision
+  std::vector<char> bad_triangle;      // failing cell or colliding new triangle
+  bool any_bad = false;
+};
+
+class FrontChecker {
+ public:
+  // check_collisions false: cells are still checked, the intersection test is skipped.
+  FrontChecker(const TriSurface& wall, bool check_collisions);
+
+  // The wall alone, for the wall-gap cap before marching.
+  ProximityRays wall_rays() const;
+  // The wall and the current front (after begin_layer with k > 0).
+  ProximityRays front_rays() const;
+
+  // Starts layer k (0-based) from the current column tops and layer counts.
+  void begin_layer(int k, const std::vector<Vec3>& top, const std::vector<int>& layers);
+
+  // Checks the layer from `top` to `next` for the columns with grows set (attempt 0
+  // first in each layer, then 1, 2, ... with the repaired positions).
+  void check(int attempt, const std::vector<Vec3>& top, const std::vector<Vec3>& next, const std::vector<char>& grows,
+             FrontVerdict* out);
+
+  // Frees the trees and the point soup (the marching state is not needed for output).
+  void release();
+
+ private:
+  void check_cells(const std::vector<Vec3>& top, const std::vector<Vec3>& next);
+  void check_intersections(const std::vector<Vec3>& next);
+  Box soup_box(const IndexedTriangle& t) const;
+
+  const std::vector<Triangle>* triangles_;
+  const std::vector<Vec3>* wall_points_;
+  int nv_ = 0, nf_ = 0, k_ = 0;
+  bool check_collisions_ = true;
+
+  TriangleBvh wall_tree_, cur_tree_, new_tree_;
+  std::vector<Vec3> wall_normal_, cur_normal_;
+  const std::vector<Vec3>* cur_points_ = nullptr;
+  std::vector<Box> cur_boxes_, new_boxes_;
+
+  std::vector<Vec3> soup_;
+  std::vector<IndexedTriangle> wall_tris_, cur_tris_, new_tris_;
+  std::vector<char> cur_is_wall_;
+  const std::vector<int>* layers_ = nullptr;
+
+  // Attempt state.
+  std::vector<char> grows_, prev_grows_, moved_;
+  std::vector<Vec3> prev_next_;
+  std::vector<char> bad_cell_, collided_, tri_moved_, tri_grows_, query_;
+  tbb::enumerable_thread_specific<std::vector<int>> partner_hits_;
+};
+
+}  // namespace blayer

@@ -1,0 +1,35 @@
+// Proximity: the distance ahead of a column, along its step, to the wall or to the
+// current front, for the height limiters (the wall-gap cap before marching, the step
+// limit on every layer).
+//
+// Floating point (Moller-Trumbore): the limiter is a heuristic that keeps fronts apart;
+// exact predicates decide validity and intersections elsewhere (front_checker.h).
+#pragma once
+
+#include <vector>
+
+#include "blayer/core/ray_triangle.h"
+#include "blayer/core/surface.h"
+#include "blayer/extruder/triangle_bvh.h"
+
+namespace blayer {
+
+// A view of the wall and, optionally, the current front (the wall's triangles on the
+// column tops), each with a tree over its triangles' boxes and unit triangle normals.
+// Nothing is owned; the arrays must outlive the view.
+struct ProximityRays {
+  const std::vector<Triangle>* triangles = nullptr;
+  const std::vector<Vec3>* wall_points = nullptr;
+  const TriangleBvh* wall_tree = nullptr;
+  const std::vector<Vec3>* wall_normal = nullptr;
+  const std::vector<Vec3>* front_points = nullptr;  // null: the wall only
+  const TriangleBvh* front_tree = nullptr;
+  const std::vector<Vec3>* front_normal = nullptr;
+
+  // Distance to the first triangle hit along dir from o within t_max that is not
+  // incident to column v and faces the ray (dir . normal < 0: a wall or front seen
+  // from its fluid side); +inf if none.
+  double first_hit(int v, const Vec3& o, const Vec3& dir, double t_max) const;
+};
+
+}  // namespace blayer

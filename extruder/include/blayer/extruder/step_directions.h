@@ -1,0 +1,58 @@
+// Step directions on a front: the point normals of the front (recomputed on every layer
+// with the chosen method), optionally smoothed without losing visibility, their
+// visibility against the incident front faces, and the direction repair that turns
+// columns of failing cells towards their neighbours.
+#pragma once
+
+#include <vector>
+
+#include "blayer/core/surface.h"
+#include "blayer/extruder/extrusion_params.h"
+#include "blayer/extruder/wall_topology.h"
+
+namespace blayer {
+
+struct StepDirections {
+  std::vector<Vec3> face_normal;   // unit normals of the front's triangles
+  std::vector<Vec3> n;             // unit step direction per column
+  std::vector<double> visibility;  // min over incident front faces of n.f
+  std::vector<char> ok;            // a usable (visible, non-degenerate) direction exists
+};
+
+// Directions on `front` (the wall's triangles on the current column tops) for the
+// columns with active set. A column is ok when its normal has a status other than
+// kNoVisibleDirection, is finite and non-zero, and its visibility is >= min_visibility.
+// Smoothing (normal_smoothing_iterations Jacobi passes): each ok direction is blended
+// towards the normalised sum of its own and its ok neighbours' directions, fully, by a
+// half or by a quarter, and the first blend whose visibility is not below the
+// unsmoothed direction's (nor min_visibility) is kept; otherwise it stays.
+StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
+                                       const std::vector<char>& active, const ExtrusionParams& p);
+
+// Directions for a later layer from the previous layer's (column_directions):
+//   kKept        each column keeps its direction while it sees the current front's
+//                faces by min_visibility, so columns stay straight where the front is
+//                an offset of the wall; a column that does not is turned towards the
+//                front's own point normal (normal_method, computed for that point only)
+//                by the least blend that restores half of that normal's visibility
+//                (or min_visibility, whichever is larger); it is not ok when even the
+//                front normal is below min_visibility. *n_turned counts those columns.
+//   kRecomputed  compute_step_directions on the front (normals recomputed everywhere).
+StepDirections update_step_directions(const TriSurface& front, const WallTopology& topo,
+                                      const std::vector<char>& active, const ExtrusionParams& p,
+                                      const StepDirections& previous, int* n_turned);
+
+// min over the incident front faces of v of n.f.
+double visibility_of(const StepDirections& d, const WallTopology& topo, int v, const Vec3& n);
+
+// Direction repair: failing cells and colliding triangles mostly come from neighbouring
+// columns that diverge sideways by more than a short edge (thin triangles, mild
+// concavity). Each column with bad set is turned towards the normalised sum of the
+// directions of the growing columns of its failing triangles (bad_triangle), when that
+// direction keeps at least half of the column's visibility and min_visibility. Returns
+// per column whether it was turned (d->n and d->visibility updated for those).
+std::vector<char> turn_failing_columns(const std::vector<Triangle>& triangles, const WallTopology& topo,
+                                       const std::vector<char>& bad, const std::vector<char>& bad_triangle,
+                                       const std::vector<char>& grows, double min_visibility, StepDirections* d);
+
+}  // namespace blayer

@@ -1,0 +1,37 @@
+#include "blayer/extruder/extrusion_params.h"
+
+#include <cmath>
+#include <string>
+
+#include "blayer/core/errors.h"
+
+namespace blayer {
+
+const char* stop_reason_name(StopReason r) {
+  switch (r) {
+    case StopReason::kNone: return "none";
+    case StopReason::kCollision: return "collision";
+    case StopReason::kQuality: return "quality";
+    case StopReason::kProximity: return "proximity";
+    case StopReason::kVisibility: return "visibility";
+    case StopReason::kWallGap: return "wall_gap";
+    case StopReason::kAspectRatio: return "aspect_ratio";
+    case StopReason::kStepStretch: return "step_stretch";
+  }
+  return "unknown";
+}
+
+void check_extrusion_params(const ExtrusionParams& p) {
+  auto fail = [](const std::string& m) { throw InputError("extrusion parameters: " + m); };
+  if (p.normal_smoothing_iterations < 0) fail("normal_smoothing_iterations must be >= 0");
+  if (p.height_smoothing_rings < 0) fail("height_smoothing_rings must be >= 0");
+  if (p.direction_repair_passes < 0) fail("direction_repair_passes must be >= 0");
+  if (!(p.proximity_safety > 0.0 && p.proximity_safety <= 0.5))
+    fail("proximity_safety must be in (0, 0.5] (two fronts growing towards each other meet in the middle)");
+  if (!(p.max_layer_aspect >= 0.0) || !std::isfinite(p.max_layer_aspect))
+    fail("max_layer_aspect must be >= 0 (0 disables the layer end)");
+  if (!(p.min_visibility > 0.0 && p.min_visibility < 1.0)) fail("min_visibility must be in (0, 1)");
+  if (!(p.max_step_stretch >= 1.0) || !std::isfinite(p.max_step_stretch)) fail("max_step_stretch must be >= 1");
+}
+
+}  // namespace blayer

@@ -1,0 +1,245 @@
+#include "blayer/extruder/front_checker.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+#include "blayer/extruder/filtered_orient3d.h"
+#include "blayer/extruder/layer_cells.h"
+#include "blayer/quality/cell_validity.h"
+#include "parallel.h"
+
+namespace blayer {
+
+namespace {
+
+// Same verdict as cell_validity(type, corners) == Validity::kValid (every validity tet
+// strictly positive), with the inlined filtered predicate.
+bool cell_is_valid(CellType type, const Vec3* corners) {
+  std::size_t n = 0;
+  const std::array<int, 4>* tets = validity_tets(type, &n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::array<int, 4>& t = tets[i];
+    if (detail::orient3d_filtered(corners[t[0]], corners[t[1]], corners[t[2]], corners[t[3]]) <= 0) return false;
+  }
+  return true;
+}
+
+void unit_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& P, std::vector<Vec3>* out) {
+  out->resize(tris.size());
+  tbb::parallel_for(0, static_cast<int>(tris.size()), [&](int i) {
+    const Triangle& t = tris[i];
+    (*out)[i] = normalized(cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]));
+  });
+}
+
+}  // namespace
+
+FrontChecker::FrontChecker(const TriSurface& wall, bool check_collisions)
+    : triangles_(&wall.triangles),
+      wall_points_(&wall.points),
+      nv_(static_cast<int>(wall.points.size())),
+      nf_(static_cast<int>(wall.triangles.size())),
+      check_collisions_(check_collisions) {
+  std::vector<Box> wall_boxes(nf_);
+  tbb::parallel_for(0, nf_, [&](int f) {
+    const Triangle& t = wall.triangles[f];
+    wall_boxes[f] = Box::of_triangle(wall.points[t[0]], wall.points[t[1]], wall.points[t[2]]);
+  });
+  wall_tree_.build(wall_boxes);
+  unit_normals(wall.triangles, wall.points, &wall_normal_);
+  cur_tree_ = wall_tree_;
+  new_tree_ = wall_tree_;
+  cur_boxes_.resize(nf_);
+  new_boxes_.resize(nf_);
+  grows_.assign(nv_, 0);
+  prev_grows_.assign(nv_, 0);
+  moved_.assign(nv_, 0);
+  prev_next_.resize(nv_);
+  for (auto* v : {&bad_cell_, &collided_, &tri_moved_, &tri_grows_, &query_}) v->assign(nf_, 0);
+  wall_tris_.resize(nf_);
+  cur_tris_.resize(nf_);
+  new_tris_.resize(nf_);
+  cur_is_wall_.assign(nf_, 0);
+  if (check_collisions_) {
+    soup_.resize(3 * static_cast<std::size_t>(nv_));
+    std::copy(wall.points.begin(), wall.points.end(), soup_.begin());
+    tbb::parallel_for(0, nf_, [&](int f) {
+      const Triangle& t = wall.triangles[f];
+      wall_tris_[f] = {t[0], t[1], t[2]};
+    });
+  }
+}
+
+ProximityRays FrontChecker::wall_rays() const {
+  ProximityRays r;
+  r.triangles = triangles_;
+  r.wall_points = wall_points_;
+  r.wall_tree = &wall_tree_;
+  r.wall_normal = &wall_normal_;
+  return r;
+}
+
+ProximityRays FrontChecker::front_rays() const {
+  ProximityRays r = wall_rays();
+  if (k_ > 0) {
+    r.front_points = cur_points_;
+    r.front_tree = &cur_tree_;
+    r.front_normal = &cur_normal_;
+  }
+  return r;
+}
+
+void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) {
+  k_ = k;
+  cur_points_ = &top;
+  layers_ = &layers;
+  const std::vector<Triangle>& tris = *triangles_;
+  if (k > 0) {
+    tbb::parallel_for(0, nf_, [&](int f) {
+      const Triangle& t = tris[f];
+      cur_boxes_[f] = Box::of_triangle(top[t[0]], top[t[1]], top[t[2]]);
+    });
+    cur_tree_.refit(cur_boxes_);
+    unit_normals(tris, top, &cur_normal_);
+  }
+  if (check_collisions_) {
+    std::copy(top.begin(), top.end(), soup_.begin() + nv_);
+    if (k > 0) {
+      auto cur_id = [&](int v) -> std::int64_t { return layers[v] == 0 ? v : nv_ + v; };
+      tbb::parallel_for(0, nf_, [&](int f) {
+        const Triangle& t = tris[f];
+        cur_tris_[f] = {cur_id(t[0]), cur_id(t[1]), cur_id(t[2])};
+        cur_is_wall_[f] = layers[t[0]] == 0 && layers[t[1]] == 0 && layers[t[2]] == 0;
+      });
+    }
+  }
+  std::fill(bad_cell_.begin(), bad_cell_.end(), 0);
+  std::fill(collided_.begin(), collided_.end(), 0);
+}
+
+Box FrontChecker::soup_box(const IndexedTriangle& t) const {
+  return Box::of_triangle(soup_[t[0]], soup_[t[1]], soup_[t[2]]);
+}
+
+void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<Vec3>& next) {
+  const std::vector<Triangle>& tris = *triangles_;
+  tbb::parallel_for(0, nf_, [&](int f) {
+    if (!tri_moved_[f]) return;
+    const Triangle& t = tris[f];
+    const std::array<bool, 3> g = {bool(grows_[t[0]]), bool(grows_[t[1]]), bool(grows_[t[2]])};
+    LayerCell cell;
+    bad_cell_[f] = 0;
+    // Local ids: 0..2 the bottoms, 3..5 the tops of the triangle's columns.
+    if (!layer_cell({0, 1, 2}, {3, 4, 5}, g, &cell)) return;
+    Vec3 c[6];
+    for (int i = 0; i < corner_count(cell.type); ++i) {
+      const int id = static_cast<int>(cell.nodes[i]);
+      c[i] = id < 3 ? top[t[id]] : next[t[id - 3]];
+    }
+    bad_cell_[f] = !cell_is_valid(cell.type, c);
+  });
+}
+
+void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
+  const std::vector<Triangle>& tris = *triangles_;
+  const std::vector<int>& layers = *layers_;
+  auto cur_id = [&](int v) -> std::int64_t { return layers[v] == 0 ? v : nv_ + v; };
+  auto new_id = [&](int v) -> std::int64_t { return grows_[v] ? 2 * nv_ + v : cur_id(v); };
+  std::copy(next.begin(), next.end(), soup_.begin() + 2 * static_cast<std::size_t>(nv_));
+  tbb::parallel_for(0, nf_, [&](int f) {
+    const Triangle& t = tris[f];
+    new_tris_[f] = {new_id(t[0]), new_id(t[1]), new_id(t[2])};
+    new_boxes_[f] = soup_box(new_tris_[f]);
+    query_[f] = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
+    if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
+  });
+  new_tree_.refit(new_boxes_);
+  for (auto& l : partner_hits_) l.clear();
+  tbb::parallel_for(tbb::blocked_range<int>(0, nf_), [&](const tbb::blocked_range<int>& r) {
+    std::vector<int>& partners = partner_hits_.local();
+    for (int f = r.begin(); f != r.end(); ++f) {
+      if (!query_[f]) continue;
+      const IndexedTriangle& s = new_tris_[f];
+      const Box& b = new_boxes_[f];
+      bool hit = false;
+      wall_tree_.for_each_overlap(b, [&](int j) {
+        if (!hit && soup_triangles_intersect(soup_, s, wall_tris_[j])) hit = true;
+      });
+      if (k_ > 0)
+        cur_tree_.for_each_overlap(b, [&](int j) {
+          if (!hit && !cur_is_wall_[j] && soup_triangles_intersect(soup_, s, cur_tris_[j])) hit = true;
+        });
+      // A pair of new triangles is tested once: from the smaller id if both are tested
+      // in this attempt, else from the one that is.
+      new_tree_.for_each_overlap(b, [&](int j) {
+        if (j == f || !tri_grows_[j] || (query_[j] && j < f)) return;
+        if (soup_triangles_intersect(soup_, s, new_tris_[j])) {
+          hit = true;
+          partners.push_back(j);
+        }
+      });
+      if (hit) collided_[f] = 1;
+    }
+  });
+  for (const auto& l : partner_hits_)
+    for (int j : l) collided_[j] = 1;
+}
+
+void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::vector<Vec3>& next,
+                         const std::vector<char>& grows, FrontVerdict* out) {
+  const std::vector<Triangle>& tris = *triangles_;
+  grows_ = grows;
+  parallel_vertices(nv_, [&](int v) {
+    moved_[v] = attempt == 0 || grows_[v] != prev_grows_[v] || !(next[v] == prev_next_[v]);
+  });
+  prev_next_ = next;
+  prev_grows_ = grows_;
+  tbb::parallel_for(0, nf_, [&](int f) {
+    const Triangle& t = tris[f];
+    tri_moved_[f] = moved_[t[0]] || moved_[t[1]] || moved_[t[2]];
+    tri_grows_[f] = grows_[t[0]] || grows_[t[1]] || grows_[t[2]];
+  });
+  check_cells(top, next);
+  if (check_collisions_) check_intersections(next);
+
+  out->bad.assign(nv_, 0);
+  out->reason.assign(nv_, StopReason::kNone);
+  out->bad_triangle.assign(nf_, 0);
+  out->any_bad = false;
+  for (int f = 0; f < nf_; ++f)
+    if (bad_cell_[f])
+      for (int v : tris[f])
+        if (grows_[v]) {
+          out->bad[v] = 1;
+          out->reason[v] = StopReason::kQuality;
+        }
+  for (int f = 0; f < nf_; ++f) {
+    out->bad_triangle[f] = bad_cell_[f] || collided_[f];
+    if (collided_[f])
+      for (int v : tris[f])
+        if (grows_[v]) {
+          out->bad[v] = 1;
+          if (out->reason[v] == StopReason::kNone) out->reason[v] = StopReason::kCollision;
+        }
+  }
+  out->any_bad = std::find(out->bad.begin(), out->bad.end(), 1) != out->bad.end();
+}
+
+void FrontChecker::release() {
+  auto release = [](auto& x) { x = std::decay_t<decltype(x)>(); };
+  release(soup_);
+  release(wall_tris_);
+  release(cur_tris_);
+  release(new_tris_);
+  release(cur_boxes_);
+  release(new_boxes_);
+  release(cur_normal_);
+  release(wall_tree_);
+  release(cur_tree_);
+  release(new_tree_);
+  release(prev_next_);
+}
+
+}  // namespace blayer

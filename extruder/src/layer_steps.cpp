@@ -1,0 +1,133 @@
+#include "blayer/extruder/layer_steps.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "blayer/extruder/height_smoothing.h"
+#include "parallel.h"
+
+namespace blayer {
+
+namespace {
+
+std::vector<char> growing(const ColumnState& c) {
+  std::vector<char> g(c.size());
+  for (int v = 0; v < c.size(); ++v) g[v] = !c.stopped[v];
+  return g;
+}
+
+double step_of(int k, int v, const ColumnPlan& plan, const WallPlanes& planes, const Vec3& from, const Vec3& d,
+               const ExtrusionParams& p) {
+  const double h = plan.height(v, k);
+  const double s = planes.step_to_height(v, from, d, plan.cumulative(v, k));
+  return std::clamp(s, h, p.max_step_stretch * h);
+}
+
+// Lowers layer k of every bad column (or ends it), then smooths the lowering downward.
+void lower_failing_columns(int k, const FrontVerdict& verdict, const WallTopology& topo, const ExtrusionParams& p,
+                           const std::vector<double>& start_height, ColumnPlan* plan, ColumnState* columns,
+                           std::vector<char>* grows) {
+  const int nv = columns->size();
+  std::vector<double> fraction(nv, 1.0);
+  std::vector<StopReason> why(nv, StopReason::kNone);
+  for (int v = 0; v < nv; ++v) {
+    if (!(*grows)[v]) continue;
+    fraction[v] = plan->height(v, k) / start_height[v];
+    if (!verdict.bad[v]) continue;
+    const double first = plan->height(v, 0);
+    const bool at_floor = plan->height(v, k) <= first * (1.0 + kPlannedHeightRelTol);
+    if (p.limit_policy == LimitPolicy::kTerminate || k == 0 || at_floor) {
+      end_column_after(plan, v, k, verdict.reason[v]);
+      columns->stop(v, verdict.reason[v]);
+      (*grows)[v] = 0;
+      continue;
+    }
+    fraction[v] = std::max(0.5 * plan->height(v, k), first) / start_height[v];
+    why[v] = verdict.reason[v];
+  }
+  smooth_downward(topo.vertex_neighbours, *grows, p.height_smoothing_rings, &fraction, &why);
+  for (int v = 0; v < nv; ++v) {
+    if (!(*grows)[v]) continue;
+    const double h = std::max(fraction[v] * start_height[v], plan->height(v, 0));
+    if (h < plan->height(v, k)) lower_layer(plan, v, k, h, why[v]);
+  }
+}
+
+}  // namespace
+
+std::vector<double> layer_steps(int k, const ColumnPlan& plan, const WallPlanes& planes, const StepDirections& d,
+                                const ColumnState& columns, const ExtrusionParams& p) {
+  std::vector<double> step(columns.size(), 0.0);
+  parallel_vertices(columns.size(), [&](int v) {
+    if (!columns.stopped[v]) step[v] = step_of(k, v, plan, planes, columns.top[v], d.n[v], p);
+  });
+  return step;
+}
+
+void stop_planned_ends(int k, const ColumnPlan& plan, ColumnState* columns) {
+  for (int v = 0; v < columns->size(); ++v)
+    if (!columns->stopped[v] && plan.planned_layers[v] <= k) columns->stop(v, plan.end_reason[v]);
+}
+
+void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& topo, const WallPlanes& planes,
+                        const StepDirections& d, const ExtrusionParams& p, ColumnPlan* plan, ColumnState* columns) {
+  const int nv = columns->size();
+  const std::vector<char> active = growing(*columns);
+  // The column's allowed total as a fraction of its target: what it has grown plus
+  // what the gap ahead allows, or its planned total where nothing is ahead. Smoothing
+  // this (not the fraction of the remaining layers) ramps the column tops, as the
+  // wall-gap cap does before marching.
+  std::vector<double> allowed(nv, 1.0);
+  std::vector<char> hit(nv, 0);
+  parallel_vertices(nv, [&](int v) {
+    if (!active[v]) return;
+    const double done = plan->cumulative(v, k - 1), remaining = plan->remaining(v, k);
+    allowed[v] = (done + remaining) / plan->target_total[v];
+    const double vis = std::max(planes.visibility(v, d.n[v]), 1.0 / p.max_step_stretch);
+    const double gap = rays.first_hit(v, columns->top[v], d.n[v], remaining / vis / p.proximity_safety);
+    if (gap < HUGE_VAL && p.proximity_safety * gap * vis < remaining) {
+      allowed[v] = (done + p.proximity_safety * gap * vis) / plan->target_total[v];
+      hit[v] = 1;
+    }
+  });
+  std::vector<StopReason> why(nv, StopReason::kProximity);
+  smooth_downward(topo.vertex_neighbours, active, p.height_smoothing_rings, &allowed, &why);
+  for (int v = 0; v < nv; ++v) {
+    if (!active[v]) continue;
+    const double budget = allowed[v] * plan->target_total[v] - plan->cumulative(v, k - 1);
+    if (!(budget < plan->remaining(v, k) * (1.0 - kPlannedHeightRelTol))) continue;
+    if (p.limit_policy == LimitPolicy::kCompress)
+      compress_from(plan, v, k, std::max(budget, 0.0), why[v]);
+    else
+      end_column_after(plan, v, layers_that_fit(*plan, v, k, budget), why[v]);
+  }
+  stop_planned_ends(k, *plan, columns);
+}
+
+std::vector<char> settle_layer(int k, const std::vector<Triangle>& triangles, const WallTopology& topo,
+                               const WallPlanes& planes, const ExtrusionParams& p, FrontChecker* checker,
+                               StepDirections* d, ColumnPlan* plan, ColumnState* columns, std::vector<Vec3>* next) {
+  const int nv = columns->size();
+  std::vector<char> grows = growing(*columns);
+  std::vector<double> start_height(nv, 0.0);
+  for (int v = 0; v < nv; ++v)
+    if (grows[v]) start_height[v] = plan->height(v, k);
+  FrontVerdict verdict;
+  for (int attempt = 0;; ++attempt) {
+    parallel_vertices(nv, [&](int v) {
+      (*next)[v] = grows[v] ? columns->top[v] + step_of(k, v, *plan, planes, columns->top[v], d->n[v], p) * d->n[v]
+                            : columns->top[v];
+    });
+    checker->check(attempt, columns->top, *next, grows, &verdict);
+    if (!verdict.any_bad) break;
+    if (attempt < p.direction_repair_passes) {
+      const std::vector<char> turned =
+          turn_failing_columns(triangles, topo, verdict.bad, verdict.bad_triangle, grows, p.min_visibility, d);
+      if (std::find(turned.begin(), turned.end(), 1) != turned.end()) continue;
+    }
+    lower_failing_columns(k, verdict, topo, p, start_height, plan, columns, &grows);
+  }
+  return grows;
+}
+
+}  // namespace blayer

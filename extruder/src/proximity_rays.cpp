@@ -1,0 +1,27 @@
+#include "blayer/extruder/proximity_rays.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace blayer {
+
+double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_max) const {
+  double best = HUGE_VAL;
+  auto search = [&](const TriangleBvh& tree, const std::vector<Vec3>& P, const std::vector<Vec3>& normal) {
+    tree.for_each_on_segment(o, dir, std::min(t_max, best), [&](int i, double* tm) {
+      const Triangle& t = (*triangles)[i];
+      if (t[0] == v || t[1] == v || t[2] == v) return;
+      if (!(dot(dir, normal[i]) < 0.0)) return;
+      const double d = ray_triangle_distance(o, dir, P[t[0]], P[t[1]], P[t[2]], *tm);
+      if (d < best) {
+        best = d;
+        *tm = d;
+      }
+    });
+  };
+  search(*wall_tree, *wall_points, *wall_normal);
+  if (front_points) search(*front_tree, *front_points, *front_normal);
+  return best;
+}
+
+}  // namespace blayer

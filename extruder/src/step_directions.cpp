@@ -1,0 +1,179 @@
+#include "blayer/extruder/step_directions.h"
+
+#include <algorithm>
+
+#include "blayer/normals/fan_geometry.h"
+#include "blayer/normals/vertex_normal.h"
+#include "parallel.h"
+
+namespace blayer {
+
+namespace {
+
+std::vector<Vec3> unit_face_normals(const TriSurface& s) {
+  std::vector<Vec3> fn(s.triangles.size());
+  tbb::parallel_for(0, static_cast<int>(s.triangles.size()),
+                    [&](int t) { fn[t] = normalized(triangle_area_vector(s, s.triangles[t])); });
+  return fn;
+}
+
+// One Jacobi smoothing pass over the ok directions (see compute_step_directions).
+void smoothing_pass(const WallTopology& topo, const std::vector<double>& raw_visibility, double min_visibility,
+                    StepDirections* d) {
+  const Csr& nbr = topo.vertex_neighbours;
+  std::vector<Vec3> next = d->n;
+  std::vector<double> next_vis = d->visibility;
+  parallel_vertices(topo.n_points(), [&](int v) {
+    if (!d->ok[v]) return;
+    Vec3 avg = d->n[v];
+    for (const int* u = nbr.begin(v); u != nbr.end(v); ++u)
+      if (d->ok[*u]) avg += d->n[*u];
+    avg = normalized(avg);
+    if (!(norm2(avg) > 0.0)) return;
+    for (double t : {1.0, 0.5, 0.25}) {
+      const Vec3 cand = normalized((1.0 - t) * d->n[v] + t * avg);
+      const double vis = visibility_of(*d, topo, v, cand);
+      if (vis >= raw_visibility[v] && vis >= min_visibility) {
+        next[v] = cand;
+        next_vis[v] = vis;
+        break;
+      }
+    }
+  });
+  d->n.swap(next);
+  d->visibility.swap(next_vis);
+}
+
+// The point normal of the front at v alone (the per-vertex kernel of
+// compute_point_normals).
+VertexNormal front_normal(const TriSurface& front, const WallTopology& topo, int v, NormalMethod method) {
+  const VertexFan& fan = topo.fans.fans[v];
+  std::vector<Vec3> ring;
+  ring.reserve(fan.ring.size());
+  for (int r : fan.ring) ring.push_back(front.points[r]);
+  FanGeometry g;
+  build_fan_geometry(front.points[v], ring, fan.closed, default_tolerances(), &g);
+  return compute_vertex_normal(g, method);
+}
+
+// Turns column v from its kept direction towards the front normal n by the least blend
+// t in (0, 1] whose visibility reaches `target` (bisection: visibility along the blend
+// is not monotone in general, so the result is the smallest t found that reaches it,
+// never a direction below the target).
+bool turn_to_visible(const StepDirections& d, const WallTopology& topo, int v, const Vec3& kept, const Vec3& n,
+                     double target, Vec3* out, double* out_vis) {
+  const double vis_n = visibility_of(d, topo, v, n);
+  if (vis_n < target) return false;
+  double lo = 0.0, hi = 1.0;
+  Vec3 best = n;
+  double best_vis = vis_n;
+  for (int it = 0; it < 24; ++it) {
+    const double t = 0.5 * (lo + hi);
+    const Vec3 c = normalized((1.0 - t) * kept + t * n);
+    const double vis = norm2(c) > 0.0 ? visibility_of(d, topo, v, c) : -1.0;
+    if (vis >= target) {
+      hi = t;
+      best = c;
+      best_vis = vis;
+    } else {
+      lo = t;
+    }
+  }
+  *out = best;
+  *out_vis = best_vis;
+  return true;
+}
+
+}  // namespace
+
+StepDirections update_step_directions(const TriSurface& front, const WallTopology& topo,
+                                      const std::vector<char>& active, const ExtrusionParams& p,
+                                      const StepDirections& previous, int* n_turned) {
+  *n_turned = 0;
+  if (p.column_directions == ColumnDirections::kRecomputed) return compute_step_directions(front, topo, active, p);
+  const int nv = static_cast<int>(front.points.size());
+  StepDirections d;
+  d.face_normal = unit_face_normals(front);
+  d.n = previous.n;
+  d.visibility.assign(nv, 0.0);
+  d.ok.assign(nv, 0);
+  std::vector<char> turned(nv, 0);
+  parallel_vertices(nv, [&](int v) {
+    if (!active[v] || topo.vertex_triangles.count(v) == 0 || !previous.ok[v]) return;
+    d.visibility[v] = visibility_of(d, topo, v, d.n[v]);
+    if (d.visibility[v] >= p.min_visibility) {
+      d.ok[v] = 1;
+      return;
+    }
+    const VertexNormal fn = front_normal(front, topo, v, p.normal_method);
+    if (fn.status == NormalStatus::kNoVisibleDirection || !(norm2(fn.normal) > 0.0) || !is_finite(fn.normal)) return;
+    const double target = std::max(p.min_visibility, 0.5 * visibility_of(d, topo, v, fn.normal));
+    Vec3 c;
+    double vis = 0.0;
+    if (!turn_to_visible(d, topo, v, previous.n[v], fn.normal, target, &c, &vis)) return;
+    d.n[v] = c;
+    d.visibility[v] = vis;
+    d.ok[v] = 1;
+    turned[v] = 1;
+  });
+  for (char t : turned) *n_turned += t;
+  return d;
+}
+
+double visibility_of(const StepDirections& d, const WallTopology& topo, int v, const Vec3& n) {
+  double m = 1.0;
+  const Csr& vtri = topo.vertex_triangles;
+  for (const int* t = vtri.begin(v); t != vtri.end(v); ++t) m = std::min(m, dot(n, d.face_normal[*t]));
+  return m;
+}
+
+StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
+                                       const std::vector<char>& active, const ExtrusionParams& p) {
+  const int nv = static_cast<int>(front.points.size());
+  const PointNormals pn = compute_point_normals(front, topo.fans, p.normal_method);
+  StepDirections d;
+  d.face_normal = unit_face_normals(front);
+  d.n = pn.normal;
+  d.visibility.assign(nv, 0.0);
+  d.ok.assign(nv, 0);
+  parallel_vertices(nv, [&](int v) {
+    if (!active[v] || topo.vertex_triangles.count(v) == 0) return;
+    if (pn.status[v] == NormalStatus::kNoVisibleDirection || !(norm2(d.n[v]) > 0.0) || !is_finite(d.n[v])) return;
+    d.visibility[v] = visibility_of(d, topo, v, d.n[v]);
+    d.ok[v] = d.visibility[v] >= p.min_visibility;
+  });
+  const std::vector<double> raw_visibility = d.visibility;
+  for (int it = 0; it < p.normal_smoothing_iterations; ++it) smoothing_pass(topo, raw_visibility, p.min_visibility, &d);
+  return d;
+}
+
+std::vector<char> turn_failing_columns(const std::vector<Triangle>& triangles, const WallTopology& topo,
+                                       const std::vector<char>& bad, const std::vector<char>& bad_triangle,
+                                       const std::vector<char>& grows, double min_visibility, StepDirections* d) {
+  const int nv = topo.n_points();
+  const Csr& vtri = topo.vertex_triangles;
+  std::vector<char> turned(nv, 0);
+  std::vector<Vec3> new_n = d->n;
+  std::vector<double> new_vis = d->visibility;
+  parallel_vertices(nv, [&](int v) {
+    if (!bad[v]) return;
+    Vec3 sum{0.0, 0.0, 0.0};
+    for (const int* f = vtri.begin(v); f != vtri.end(v); ++f)
+      if (bad_triangle[*f])
+        for (int u : triangles[*f])
+          if (grows[u]) sum += d->n[u];
+    const Vec3 cand = normalized(sum);
+    if (!(norm2(cand) > 0.0)) return;
+    const double vis = visibility_of(*d, topo, v, cand);
+    if (vis >= min_visibility && vis >= 0.5 * d->visibility[v] && dot(cand, d->n[v]) < 1.0) {
+      new_n[v] = cand;
+      new_vis[v] = vis;
+      turned[v] = 1;
+    }
+  });
+  d->n.swap(new_n);
+  d->visibility.swap(new_vis);
+  return turned;
+}
+
+}  // namespace blayer

@@ -1,0 +1,385 @@
+// Tests of the marching stages on their own: each pins one rule of extrude_layers.h on
+// a small analytic surface, with the expected figure derived in the test.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "blayer/extruder/column_heights.h"
+#include "blayer/extruder/column_plan.h"
+#include "blayer/extruder/wall_planes.h"
+#include "blayer/extruder/front_checker.h"
+#include "blayer/extruder/height_smoothing.h"
+#include "blayer/extruder/layer_assembly.h"
+#include "blayer/extruder/layer_steps.h"
+#include "blayer/extruder/proximity_rays.h"
+#include "blayer/extruder/step_directions.h"
+#include "blayer/extruder/wall_topology.h"
+#include "test_surfaces.h"
+
+namespace blayer {
+namespace {
+
+// The law without smoothing, direction repair or height ramps: the settling tests see
+// the checker's verdict acted on directly.
+ExtrusionParams unrepaired_params(int n, double h1, double r) {
+  ExtrusionParams p = test::growth_params(n, h1, r);
+  p.normal_smoothing_iterations = 0;
+  p.direction_repair_passes = 0;
+  p.height_smoothing_rings = 0;
+  return p;
+}
+
+// A flat n x n grid of squares of the given spacing in z = 0, facing +z.
+TriSurface flat_grid(int n, double spacing = 1.0) { return test::square_plate(n, n * spacing); }
+
+
+TEST(WallTopology, GridTablesAreSortedAndComplete) {
+  const TriSurface s = flat_grid(2);
+  const WallTopology t = build_wall_topology(s);
+  // Centre point 4 of the 3x3 grid: 6 triangles, 6 neighbours (the diagonal split adds 2).
+  EXPECT_EQ(t.vertex_triangles.count(4), 6);
+  EXPECT_EQ(t.vertex_neighbours.count(4), 6);
+  EXPECT_TRUE(std::is_sorted(t.vertex_neighbours.begin(4), t.vertex_neighbours.end(4)));
+  EXPECT_EQ(t.vertex_triangles.count(2), 1);  // corner (2,0): one triangle
+  for (int v = 0; v < t.n_points(); ++v) EXPECT_TRUE(t.used[v]);
+}
+
+TEST(HeightSmoothing, LowSpotRampsBackByOneOverRingsPlusOnePerRing) {
+  const TriSurface s = flat_grid(8);
+  const WallTopology t = build_wall_topology(s);
+  std::vector<double> f(t.n_points(), 1.0);
+  std::vector<StopReason> why(t.n_points(), StopReason::kNone);
+  const int centre = 4 * 9 + 4;
+  f[centre] = 0.2;
+  why[centre] = StopReason::kProximity;
+  smooth_downward(t.vertex_neighbours, t.used, 3, &f, &why);
+  // Ring distance 1 -> 0.2 + 0.25, 2 -> 0.7, 3 -> 0.95, beyond: untouched.
+  EXPECT_DOUBLE_EQ(f[centre], 0.2);
+  EXPECT_DOUBLE_EQ(f[centre + 1], 0.45);
+  EXPECT_DOUBLE_EQ(f[centre + 2], 0.7);
+  EXPECT_DOUBLE_EQ(f[centre + 3], 0.95);
+  EXPECT_DOUBLE_EQ(f[centre + 4], 1.0);
+  EXPECT_EQ(why[centre + 3], StopReason::kProximity);
+  EXPECT_EQ(why[centre + 4], StopReason::kNone);
+  for (double x : f) EXPECT_LE(x, 1.0);
+}
+
+TEST(ProximityRays, RayTriangleDistanceIsExactAndMissesOutside) {
+  const Vec3 a{0, 0, 1}, b{1, 0, 1}, c{0, 1, 1};
+  EXPECT_DOUBLE_EQ(ray_triangle_distance({0.2, 0.2, 0}, {0, 0, 1}, a, b, c, 10.0), 1.0);
+  EXPECT_EQ(ray_triangle_distance({0.2, 0.2, 0}, {0, 0, 1}, a, b, c, 0.5), HUGE_VAL);   // beyond t_max
+  EXPECT_EQ(ray_triangle_distance({0.8, 0.8, 0}, {0, 0, 1}, a, b, c, 10.0), HUGE_VAL);  // outside
+  EXPECT_EQ(ray_triangle_distance({0.2, 0.2, 0}, {1, 0, 0}, a, b, c, 10.0), HUGE_VAL);  // parallel
+}
+
+// Two parallel plates facing each other across a gap: the lower one faces +z, the
+// upper one -z.
+TriSurface facing_plates(double gap) {
+  TriSurface lower = flat_grid(4);
+  TriSurface upper = flat_grid(4);
+  for (Vec3& p : upper.points) p[2] = gap;
+  for (Triangle& t : upper.triangles) std::swap(t[1], t[2]);
+  const int base = static_cast<int>(lower.points.size());
+  for (const Vec3& p : upper.points) lower.points.push_back(p);
+  for (Triangle t : upper.triangles) lower.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return lower;
+}
+
+TEST(ColumnHeights, WallGapFitsColumnsFacingAnotherWallIntoTheSafetyShare) {
+  const double gap = 1.0;
+  const TriSurface wall = facing_plates(gap);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = test::growth_params(4, 0.05, 2.0);  // 0.05 0.1 0.2 0.4: T = 0.75 > 0.45 x gap
+  p.height_smoothing_rings = 0;
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  FrontChecker checker(wall, true);
+  const ColumnPlan plan = plan_column_heights(wall, topo, law, p, d, checker.wall_rays());
+  const int centre = 2 * 5 + 2;
+  EXPECT_EQ(plan.limit[centre], StopReason::kWallGap);
+  EXPECT_EQ(plan.planned_layers[centre], 4);
+  EXPECT_DOUBLE_EQ(plan.height(centre, 0), 0.05);
+  EXPECT_NEAR(plan.remaining(centre, 0), p.proximity_safety * gap, 1e-12);
+}
+
+TEST(ColumnPlan, CompressionSolvesTheLargestRatioThatFits) {
+  ResolvedGrowthLaw law = resolve_growth_law(GrowthLaw{5, 1.0, 2.0, 0.0, 0.0, false});  // 1 2 4 8 16
+  ColumnPlan plan = plan_columns(law, {1.0});
+  ASSERT_TRUE(compress_from(&plan, 0, 2, 12.0, StopReason::kProximity));  // layers 2..4 from p = 2
+  // 2 (r + r^2 + r^3) = 12 -> r^3 + r^2 + r - 6 = 0 -> r = 1.5761...
+  const double r = plan.height(0, 2) / 2.0;
+  EXPECT_NEAR(r * r * r + r * r + r, 6.0, 1e-12);
+  EXPECT_NEAR(plan.remaining(0, 2), 12.0, 1e-12);
+  EXPECT_NEAR(plan.height(0, 3), 2.0 * r * r, 1e-12);
+  EXPECT_EQ(plan.height(0, 0), 1.0);
+  EXPECT_EQ(plan.height(0, 1), 2.0);
+  EXPECT_EQ(plan.planned_layers[0], 5);
+  EXPECT_EQ(plan.limit[0], StopReason::kProximity);
+  EXPECT_FALSE(compress_from(&plan, 0, 2, 20.0, StopReason::kQuality)) << "fits: no change";
+}
+
+TEST(ColumnPlan, UniformLayersAreTheLastResortBeforeEnding) {
+  ResolvedGrowthLaw law = resolve_growth_law(GrowthLaw{5, 1.0, 2.0, 0.0, 0.0, false});
+  ColumnPlan plan = plan_columns(law, {1.0});
+  ASSERT_TRUE(compress_from(&plan, 0, 0, 3.5, StopReason::kWallGap));  // 5 x 1 > 3.5
+  EXPECT_EQ(plan.planned_layers[0], 3);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(plan.height(0, k), 1.0);
+  ColumnPlan tiny = plan_columns(law, {1.0});
+  ASSERT_TRUE(compress_from(&tiny, 0, 0, 0.9, StopReason::kWallGap));  // below the first height
+  EXPECT_EQ(tiny.planned_layers[0], 0);
+}
+
+TEST(ColumnPlan, LoweringALayerRestartsTheGrowthFromIt) {
+  ResolvedGrowthLaw law = resolve_growth_law(GrowthLaw{4, 1.0, 2.0, 0.0, 0.0, false});  // 1 2 4 8
+  ColumnPlan plan = plan_columns(law, {1.0});
+  lower_layer(&plan, 0, 2, 1.5, StopReason::kQuality);
+  EXPECT_EQ(plan.height(0, 2), 1.5);
+  EXPECT_EQ(plan.height(0, 3), 3.0);
+  EXPECT_EQ(plan.limit[0], StopReason::kQuality);
+  EXPECT_EQ(plan.target_total[0], 15.0);
+}
+
+TEST(StepDirections, SmoothingNeverLowersVisibilityBelowTheRawDirection) {
+  const TriSurface wall = test::icosphere(2, 1.0);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams raw = test::growth_params(1, 0.01, 1.0), smooth = raw;
+  raw.normal_smoothing_iterations = 0;
+  smooth.normal_smoothing_iterations = 3;
+  const StepDirections a = compute_step_directions(wall, topo, topo.used, raw);
+  const StepDirections b = compute_step_directions(wall, topo, topo.used, smooth);
+  for (int v = 0; v < topo.n_points(); ++v) {
+    ASSERT_TRUE(b.ok[v]);
+    EXPECT_GE(b.visibility[v], a.visibility[v]) << v;
+    EXPECT_NEAR(visibility_of(b, topo, v, b.n[v]), b.visibility[v], 1e-15);
+  }
+}
+
+TEST(StepDirections, RepairTurnsAFailingColumnTowardsItsNeighbours) {
+  const TriSurface wall = flat_grid(2);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = test::growth_params(1, 0.1, 1.0);
+  p.normal_smoothing_iterations = 0;
+  StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  const int centre = 4;
+  d.n[centre] = normalized(Vec3{0.5, 0.0, 1.0});  // leans sideways
+  d.visibility[centre] = visibility_of(d, topo, centre, d.n[centre]);
+  std::vector<char> bad(topo.n_points(), 0), grows(topo.n_points(), 1);
+  std::vector<char> bad_tri(wall.triangles.size(), 1);
+  bad[centre] = 1;
+  const std::vector<char> turned = turn_failing_columns(wall.triangles, topo, bad, bad_tri, grows, 0.05, &d);
+  EXPECT_TRUE(turned[centre]);
+  EXPECT_EQ(std::count(turned.begin(), turned.end(), 1), 1);
+  // The new direction is the normalised sum over the incident triangles' columns, which
+  // lean less than the failing one.
+  EXPECT_GT(d.n[centre][2], normalized(Vec3{0.5, 0.0, 1.0})[2]);
+}
+
+// A first layer on a flat grid: every column on the wall, all grown 0.1 up.
+struct FlatFirstLayer {
+  TriSurface wall;
+  std::vector<Vec3> top, next;
+  std::vector<int> layers;
+  std::vector<char> grows;
+  explicit FlatFirstLayer(int n) : wall(flat_grid(n)), top(wall.points), next(wall.points) {
+    layers.assign(top.size(), 0);
+    grows.assign(top.size(), 1);
+    for (Vec3& p : next) p[2] = 0.1;
+  }
+};
+
+TEST(FrontChecker, FlagsAnInvertedCellAndOnlyItsColumns) {
+  FlatFirstLayer f(2);
+  auto& [wall, top, next, layers, grows] = f;
+  FrontChecker checker(wall, true);
+  checker.begin_layer(0, top, layers);
+  FrontVerdict v;
+  checker.check(0, top, next, grows, &v);
+  EXPECT_FALSE(v.any_bad);
+  next[4] = {1.0, 1.0, -0.1};  // the centre column dips below the wall
+  checker.check(1, top, next, grows, &v);
+  EXPECT_TRUE(v.any_bad);
+  EXPECT_TRUE(v.bad[4]);
+  EXPECT_EQ(v.reason[4], StopReason::kQuality);
+  // Only the columns of the six triangles around the centre are flagged; corner (0,0)
+  // shares no triangle with it... except through the diagonal split: point 0's only
+  // triangles are (0,1,4) and (0,4,3), so it is flagged; point 2's is (1,2,5): not.
+  EXPECT_FALSE(v.bad[2]);
+  EXPECT_FALSE(v.bad[6]);
+}
+
+TEST(FrontChecker, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {
+  FlatFirstLayer f(3);
+  auto& [wall, top, next, layers, grows] = f;
+  next[5] = {1.0, 1.0, -0.05};
+  FrontChecker incremental(wall, true);
+  incremental.begin_layer(0, top, layers);
+  FrontVerdict first, second, fresh;
+  incremental.check(0, top, next, grows, &first);
+  ASSERT_TRUE(first.any_bad);
+  next[5] = {1.0, 1.0, 0.1};  // repaired
+  next[10] = {2.0, 2.0, -0.05};  // and another column broken
+  incremental.check(1, top, next, grows, &second);
+  FrontChecker full(wall, true);
+  full.begin_layer(0, top, layers);
+  full.check(0, top, next, grows, &fresh);
+  EXPECT_EQ(second.bad, fresh.bad);
+  EXPECT_EQ(second.bad_triangle, fresh.bad_triangle);
+}
+
+TEST(FrontChecker, FlagsANewFrontThatCrossesTheOtherWall) {
+  const TriSurface wall = facing_plates(0.5);
+  FrontChecker checker(wall, true);
+  std::vector<Vec3> top = wall.points, next = wall.points;
+  std::vector<int> layers(top.size(), 0);
+  std::vector<char> grows(top.size(), 0);
+  const int centre = 2 * 5 + 2;  // lower plate centre: pushed through the upper plate
+  grows[centre] = 1;
+  next[centre][2] = 0.8;
+  checker.begin_layer(0, top, layers);
+  FrontVerdict v;
+  checker.check(0, top, next, grows, &v);
+  EXPECT_TRUE(v.bad[centre]);
+  EXPECT_EQ(v.reason[centre], StopReason::kCollision);
+}
+
+TEST(LayerSteps, StepsReachThePlannedHeightAboveTheWallPlanes) {
+  const TriSurface wall = test::icosphere(2, 1.0);
+  const WallTopology topo = build_wall_topology(wall);
+  const WallPlanes planes(wall, topo);
+  const ExtrusionParams p = test::growth_params(3, 0.01, 1.2);
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  const ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
+  const ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  const std::vector<double> s = layer_steps(0, plan, planes, d, c, p);
+  for (int v = 0; v < topo.n_points(); ++v)
+    EXPECT_NEAR(planes.height_above(v, wall.points[v] + s[v] * d.n[v]), 0.01, 1e-15) << v;
+}
+
+TEST(LayerSteps, ProximityCompressesTheRemainingLayersIntoTheGapShare) {
+  const double gap = 1.0;
+  const TriSurface wall = facing_plates(gap);
+  const WallTopology topo = build_wall_topology(wall);
+  const WallPlanes planes(wall, topo);
+  ExtrusionParams p = test::growth_params(3, 0.3, 1.0);  // T = 0.9 > 0.45
+  p.height_smoothing_rings = 0;
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  FrontChecker checker(wall, true);
+  checker.begin_layer(0, c.top, c.layers);
+  limit_by_proximity(0, checker.front_rays(), topo, planes, d, p, &plan, &c);
+  const int centre = 2 * 5 + 2;
+  // 3 x 0.3 does not fit into 0.45 with ratio >= 1: one layer of 0.3 remains.
+  EXPECT_EQ(plan.planned_layers[centre], 1);
+  EXPECT_EQ(plan.limit[centre], StopReason::kProximity);
+  EXPECT_FALSE(c.stopped[centre]);
+  p.limit_policy = LimitPolicy::kTerminate;
+  ColumnPlan plan2 = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
+  ColumnState c2 = ColumnState::on_wall(wall.points, topo.used);
+  limit_by_proximity(0, checker.front_rays(), topo, planes, d, p, &plan2, &c2);
+  EXPECT_EQ(plan2.planned_layers[centre], 1);
+}
+
+TEST(LayerSteps, AFirstLayerThatCannotBeMadeValidIsNotGrown) {
+  const TriSurface wall = flat_grid(4);
+  const WallTopology topo = build_wall_topology(wall);
+  const WallPlanes planes(wall, topo);
+  ExtrusionParams p = unrepaired_params(2, 0.5, 1.0);
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  const int centre = 2 * 5 + 2;
+  // Leans so far that a step 0.5 above the wall moves it 1.5 sideways, past its
+  // neighbour one unit away.
+  d.n[centre] = normalized(Vec3{3.0, 0.0, 1.0});
+  ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  FrontChecker checker(wall, true);
+  checker.begin_layer(0, c.top, c.layers);
+  std::vector<Vec3> next(wall.points.size());
+  const std::vector<char> grows = settle_layer(0, wall.triangles, topo, planes, p, &checker, &d, &plan, &c, &next);
+  EXPECT_FALSE(grows[centre]);
+  EXPECT_EQ(c.reason[centre], StopReason::kQuality);
+  EXPECT_EQ(plan.planned_layers[centre], 0);
+  // The first height is never lowered: every column that grows stands at h1.
+  for (int v = 0; v < topo.n_points(); ++v) {
+    if (grows[v]) {
+      EXPECT_NEAR(planes.height_above(v, next[v]), 0.5, 1e-15) << v;
+    }
+  }
+}
+
+TEST(LayerSteps, AFailingUpperLayerIsLoweredBeforeTheColumnEnds) {
+  const TriSurface wall = flat_grid(4);
+  const WallTopology topo = build_wall_topology(wall);
+  const WallPlanes planes(wall, topo);
+  ExtrusionParams p = unrepaired_params(2, 0.1, 4.0);  // layer 1 planned at 0.4
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  const int centre = 2 * 5 + 2;
+  ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  for (int v = 0; v < topo.n_points(); ++v) {  // after a first layer of 0.1
+    c.top[v] = wall.points[v] + Vec3{0.0, 0.0, 0.1};
+    c.layers[v] = 1;
+  }
+  // The centre column leans by 45 degrees: a step of 0.4 x sqrt 2 moves it 0.4 sideways,
+  // across its neighbour one unit away only at heights above ~1; make the neighbour
+  // spacing effectively 0.25 by leaning harder.
+  d.n[centre] = normalized(Vec3{4.0, 0.0, 1.0});
+  FrontChecker checker(wall, true);
+  checker.begin_layer(1, c.top, c.layers);
+  std::vector<Vec3> next(wall.points.size());
+  const std::vector<char> grows = settle_layer(1, wall.triangles, topo, planes, p, &checker, &d, &plan, &c, &next);
+  ASSERT_TRUE(grows[centre]) << "lowered, not ended";
+  EXPECT_LT(plan.height(centre, 1), 0.4);
+  EXPECT_GE(plan.height(centre, 1), 0.1);
+  EXPECT_EQ(plan.limit[centre], StopReason::kQuality);
+  EXPECT_NEAR(planes.height_above(centre, next[centre]), 0.1 + plan.height(centre, 1), 1e-12);
+}
+
+TEST(LayerAssembly, CellTypesFollowHowManyColumnsGrow) {
+  const TriSurface wall = flat_grid(1);  // 4 points, 2 triangles (0,1,3) and (0,3,2)
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = test::growth_params(1, 0.1, 1.0);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  LayerAssembler a(wall, d);
+  std::vector<Vec3> next = wall.points;
+  for (Vec3& q : next) q[2] = 0.1;
+  a.commit_layer(0, {1, 1, 0, 1}, next, d, &c);  // (0,1,3) wedge; (0,3,2) pyramid
+  EXPECT_EQ(c.layers, (std::vector<int>{1, 1, 0, 1}));
+  EXPECT_EQ(c.top_id[3], 6);
+  const VolumeMesh m = a.finish(c);
+  ASSERT_EQ(m.n_cells(), 2u);
+  EXPECT_EQ(m.cell_types[0], CellType::kWedge);
+  EXPECT_EQ(m.cell_types[1], CellType::kPyramid);
+  EXPECT_EQ(m.points.size(), 7u);
+  EXPECT_EQ(a.columns_per_layer(), std::vector<int>{3});
+  EXPECT_NE(m.find_point_array("column_height"), nullptr);
+  EXPECT_DOUBLE_EQ(m.find_point_array("column_height")->values[4], 0.1);  // point 4 = top of column 0
+}
+
+}  // namespace
+}  // namespace blayer
+
+namespace blayer {
+namespace {
+
+TEST(TriangleBvh, SegmentsWithNegativeZeroComponentsFindBoxesOnTheirOriginsPlane) {
+  // Boxes whose y range ends exactly at the ray's origin y: the ray runs along their
+  // face. A direction of (-1, -0, 0) must see them as (-1, +0, 0) does.
+  std::vector<Box> boxes{{{0.0, 0.5, 0.0}, {0.1, 0.75, 1.0}}, {{0.0, 0.75, 0.0}, {0.1, 1.0, 1.0}}};
+  TriangleBvh tree;
+  tree.build(boxes);
+  for (const Vec3& dir : {Vec3{-1.0, 0.0, 0.0}, Vec3{-1.0, -0.0, 0.0}, Vec3{-1.0, 0.0, -0.0}}) {
+    int seen = 0;
+    tree.for_each_on_segment({1.0, 0.75, 0.5}, dir, 2.0, [&](int, double*) { ++seen; });
+    EXPECT_EQ(seen, 2) << dir[1];
+  }
+}
+
+}  // namespace
+}  // namespace blayer
