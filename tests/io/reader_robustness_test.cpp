@@ -4,6 +4,7 @@
 // the line (text formats) and the element, or read exactly; never read as something else.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -153,6 +154,19 @@ TEST(ReaderRobustness, CoordinatesTooLargeToComputeWithAreRefusedNamingTheVertex
       dir.write("e300.off", "OFF\n4 4 0\n0 0 0\n1e+300 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"));
   EXPECT_CONTAINS(msg, "coordinates too large to compute with");
   EXPECT_CONTAINS(msg, "vertex 1 at (1e+300, 0, 0)");
+}
+
+// The limit itself: a tetrahedron reaching |x| = 1e75 is prepared with finite
+// geometry (its volume, 1e225 / 6, included); one a hair beyond is refused.
+TEST(ReaderRobustness, CoordinateMagnitudeLimitIsInclusive) {
+  PolygonSoup tet{{{0, 0, 0}, {kMaxCoordinateMagnitude, 0, 0}, {0, kMaxCoordinateMagnitude, 0},
+                   {0, 0, kMaxCoordinateMagnitude}},
+                  {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}};
+  const PreparedSurface p = prepare_surface(tet, "big.off", {});
+  EXPECT_TRUE(std::isfinite(p.enclosed_volume));
+  EXPECT_NEAR(p.enclosed_volume / 1e225, 1.0 / 6.0, 1e-12);
+  tet.points[3][2] = std::nextafter(kMaxCoordinateMagnitude, 1e300);
+  EXPECT_THROW(prepare_surface(tet, "big.off", {}), InputError);
 }
 
 TEST(ReaderRobustness, OffCoordinateBeyondDoubleRangeOrNonNumericIsRefusedWithItsLine) {
