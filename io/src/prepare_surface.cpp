@@ -245,7 +245,13 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
 
   check_triangles(s, name, tol, problems);
   const EdgeTopology edges = build_edge_topology(s);
-  const SymmetryFinding symmetry = find_symmetry_plane(s, edges, opt.symmetry);
+  check_edges(edges, name, /*allow_open=*/true, problems);
+  problems.raise_if_any();
+  SymmetryFinding symmetry = find_symmetry_plane(s, edges, opt.symmetry);
+  // A found plane that does not make a clean half model (faces in it, the surface on
+  // both sides) is only an error when the user did not allow open surfaces: a flat
+  // open plate's boundary lies in its own plane too.
+  if (!symmetry.problems.empty() && opt.symmetry.mode == SymmetryMode::kAuto && opt.allow_open) symmetry = {};
   for (const std::string& p : symmetry.problems) problems.add("symmetry plane", p);
   problems.raise_if_any();
   check_edges(edges, name, opt.allow_open || symmetry.plane.has_value(), problems);
