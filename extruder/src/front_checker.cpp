@@ -36,8 +36,10 @@ void unit_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
 
 }  // namespace
 
-FrontChecker::FrontChecker(const TriSurface& wall, bool check_collisions)
+FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions)
     : triangles_(&wall.triangles),
+      plane_(topo.plane),
+      on_plane_(topo.on_plane),
       wall_points_(&wall.points),
       nv_(static_cast<int>(wall.points.size())),
       nf_(static_cast<int>(wall.triangles.size())),
@@ -78,6 +80,10 @@ ProximityRays FrontChecker::wall_rays() const {
   r.wall_points = wall_points_;
   r.wall_tree = &wall_tree_;
   r.wall_normal = &wall_normal_;
+  if (plane_) {
+    r.plane = &*plane_;
+    r.on_plane = &on_plane_;
+  }
   return r;
 }
 
@@ -203,6 +209,7 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
   });
   check_cells(top, next);
   if (check_collisions_) check_intersections(next);
+  if (plane_) check_symmetry_side(next);
 
   out->bad.assign(nv_, 0);
   out->reason.assign(nv_, StopReason::kNone);
@@ -216,8 +223,9 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
           out->reason[v] = StopReason::kQuality;
         }
   for (int f = 0; f < nf_; ++f) {
-    out->bad_triangle[f] = bad_cell_[f] || collided_[f];
-    if (collided_[f])
+    const bool crossing = collided_[f] || (!side_bad_.empty() && side_bad_[f]);
+    out->bad_triangle[f] = bad_cell_[f] || crossing;
+    if (crossing)
       for (int v : tris[f])
         if (grows_[v]) {
           out->bad[v] = 1;
@@ -225,6 +233,18 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
         }
   }
   out->any_bad = std::find(out->bad.begin(), out->bad.end(), 1) != out->bad.end();
+}
+
+void FrontChecker::check_symmetry_side(const std::vector<Vec3>& next) {
+  // A triangle whose points all lie on the model's side (or in the plane, for the
+  // columns on it) lies there too: the half space is convex.
+  const std::vector<Triangle>& tris = *triangles_;
+  side_bad_.assign(nf_, 0);
+  tbb::parallel_for(0, nf_, [&](int f) {
+    if (!tri_grows_[f]) return;
+    for (int v : tris[f])
+      if (grows_[v] && !on_plane_[v] && !(plane_->signed_distance(next[v]) > 0.0)) side_bad_[f] = 1;
+  });
 }
 
 void FrontChecker::release() {

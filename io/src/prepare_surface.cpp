@@ -179,16 +179,20 @@ void check_vertices(const TriSurface& s, ProblemList& problems) {
                      ": its triangles form more than one fan (surfaces touching at a point)");
 }
 
-// The edge-connected components, which are closed, and their signed volumes.
+// The edge-connected components, which are closed, which are oriented as closed (the
+// closed ones, and in a half model every one: the symmetry plane closes them) and the
+// signed volume of each.
 struct ComponentTable {
   SurfaceComponents components;
   std::vector<char> closed;
+  std::vector<char> oriented_as_closed;
   std::vector<double> volume;
 };
 
 // Precondition: the surface passed every topology check (edge-manifold, consistently
-// oriented). Reports closed components that enclose no volume.
-ComponentTable find_components(const TriSurface& s, const EdgeTopology& edges, const Tolerances& tol,
+// oriented). Reports components oriented as closed that enclose no volume.
+ComponentTable find_components(const TriSurface& s, const EdgeTopology& edges,
+                               const std::optional<SymmetryPlane>& symmetry, const Tolerances& tol,
                                ProblemList& problems) {
   BLAYER_ASSERT(edges.n_non_manifold == 0 && edges.n_inconsistent == 0);
   ComponentTable ct;
@@ -197,12 +201,23 @@ ComponentTable find_components(const TriSurface& s, const EdgeTopology& edges, c
   ct.closed.assign(n, 1);
   for (const SurfaceEdge& e : edges.edges)
     if (e.kind == EdgeKind::kBoundary) ct.closed[ct.components.of_triangle[e.triangle[0]]] = 0;
-  ct.volume = component_signed_volumes(s, ct.components);
+  ct.oriented_as_closed = ct.closed;
+  if (symmetry) {
+    // A half model's components are closed by the symmetry plane: about a point of the
+    // plane the cut's faces would add nothing to the signed volume.
+    ct.oriented_as_closed.assign(n, 1);
+    TriSurface about_plane = s;
+    const Vec3 o = symmetry->project(Vec3{0.0, 0.0, 0.0});
+    for (Vec3& p : about_plane.points) p = p - o;
+    ct.volume = component_signed_volumes(about_plane, ct.components);
+  } else {
+    ct.volume = component_signed_volumes(s, ct.components);
+  }
   const double diag = bounding_box_diagonal(s.points);
   for (int c = 0; c < n; ++c)
     // A closed component whose volume is this small relative to the model is flat
     // (e.g. a doubled sheet): it has no inside to decide a side from.
-    if (ct.closed[c] && std::abs(ct.volume[c]) <= tol.degenerate_relative_height * diag * diag * diag)
+    if (ct.oriented_as_closed[c] && std::abs(ct.volume[c]) <= tol.degenerate_relative_height * diag * diag * diag)
       problems.add("closed components enclosing no volume", "component " + std::to_string(c) +
                                                                 " (signed volume " + std::to_string(ct.volume[c]) + ")");
   return ct;
@@ -226,9 +241,10 @@ void check_intersections(const TriSurface& s, const TriangleNames& name, const C
 }
 
 // Flips each component as needed so that its normals point into the fluid, and says so
-// in out.notes. Closed components are oriented by their nesting depth (shell_nesting.h);
-// open ones keep the file's winding, reversed for --side inward. Precondition: the
-// components do not intersect (check_intersections found nothing).
+// in out.notes. Components oriented as closed follow their nesting depth among the
+// closed ones (shell_nesting.h); open ones keep the file's winding, reversed for
+// --side inward. Precondition: the components do not intersect (check_intersections
+// found nothing).
 void orient_components(const ComponentTable& ct, const PrepareOptions& opt, ProblemList& problems,
                        PreparedSurface& out) {
   TriSurface& s = out.surface;
@@ -242,7 +258,7 @@ void orient_components(const ComponentTable& ct, const PrepareOptions& opt, Prob
   const bool inward = opt.side == Side::kInward;
   std::vector<char> flip(n, 0);
   for (int c = 0; c < n; ++c) {
-    if (!ct.closed[c]) {
+    if (!ct.oriented_as_closed[c]) {
       flip[c] = inward;
       continue;
     }
@@ -262,7 +278,7 @@ void orient_components(const ComponentTable& ct, const PrepareOptions& opt, Prob
                           ", and its layers grow into the fluid");
     if (!flip[c]) continue;
     ++out.n_flipped_components;
-    if (!ct.closed[c])
+    if (!ct.oriented_as_closed[c])
       out.notes.push_back("open " + comp + ": winding reversed for --side inward");
     else
       out.notes.push_back("closed " + comp + " was oriented " + (ct.volume[c] > 0 ? "outward" : "inward") +
@@ -294,18 +310,38 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
 
   check_triangles(s, name, tol, problems);
   const EdgeTopology edges = build_edge_topology(s);
-  check_edges(edges, name, opt.allow_open, problems);
+  check_edges(edges, name, /*allow_open=*/true, problems);
+  problems.raise_if_any();
+  SymmetryFinding symmetry = find_symmetry_plane(s, edges, opt.symmetry);
+  // A found plane that does not make a clean half model (faces in it, the surface on
+  // both sides) is only an error when the user did not allow open surfaces: a flat
+  // open plate's boundary lies in its own plane too.
+  if (!symmetry.problems.empty() && opt.symmetry.mode == SymmetryMode::kAuto && opt.allow_open) symmetry = {};
+  for (const std::string& p : symmetry.problems) problems.add("symmetry plane", p);
+  problems.raise_if_any();
+  check_edges(edges, name, opt.allow_open || symmetry.plane.has_value(), problems);
   problems.raise_if_any();
   check_vertices(s, problems);
   problems.raise_if_any();
 
-  const ComponentTable components = find_components(s, edges, tol, problems);
+  if (symmetry.plane) {
+    snap_to_symmetry_plane(symmetry, &out.surface);
+    out.symmetry = symmetry.plane;
+    out.n_symmetry_points = static_cast<int>(symmetry.plane_points.size());
+    out.symmetry_snap = symmetry.max_snap;
+    std::ostringstream note;
+    note << "half model: the open boundary (" << out.n_symmetry_points << " points) lies in the symmetry plane "
+         << symmetry.plane->describe() << (opt.symmetry.mode == SymmetryMode::kAuto ? " (found)" : "")
+         << "; its points were snapped onto it (by at most " << symmetry.max_snap << ")";
+    out.notes.push_back(note.str());
+  }
+  const ComponentTable components = find_components(s, edges, out.symmetry, tol, problems);
   problems.raise_if_any();
   check_intersections(s, name, components, problems);
   problems.raise_if_any();
   orient_components(components, opt, problems, out);
   out.closed = edges.n_boundary == 0;
-  if (!out.closed)
+  if (!out.closed && !out.symmetry)
     out.notes.push_back("open surface (" + std::to_string(edges.n_boundary) +
                         " boundary edges): layers grow on the side the triangles' normals point to");
   return out;

@@ -2,6 +2,9 @@
 // by the marching stages (extrude_layers.h describes how each parameter is used).
 #pragma once
 
+#include <optional>
+
+#include "blayer/core/symmetry_plane.h"
 #include "blayer/extruder/growth_law.h"
 #include "blayer/normals/point_normals.h"
 
@@ -70,6 +73,11 @@ struct ExtrusionParams {
   // Exact per-layer intersection check of the new front (off: faster, no guarantee
   // that the envelope is free of self-intersections).
   bool check_collisions = true;
+  // A half model's symmetry plane (io/symmetry_detection.h): the wall's boundary points
+  // on it grow columns that stay in it (directions from the fan mirrored about the
+  // plane, projected into it); every other column stays on the model's side, the plane
+  // limiting it like a wall.
+  std::optional<SymmetryPlane> symmetry;
 };
 
 // Throws InputError naming the field when a parameter is out of its range.
