@@ -37,7 +37,7 @@ std::string encode(const PolygonSoup& s) {
   put(out, static_cast<std::uint64_t>(s.faces.size()));
   for (const auto& f : s.faces) {
     put(out, static_cast<std::uint64_t>(f.size()));
-    out.append(reinterpret_cast<const char*>(f.data()), f.size() * sizeof(int));
+    if (!f.empty()) out.append(reinterpret_cast<const char*>(f.data()), f.size() * sizeof(int));
   }
   return out;
 }
@@ -54,7 +54,7 @@ bool decode(const std::string& in, PolygonSoup* s) {
     std::uint64_t k = 0;
     if (!take(in, pos, &k) || k > (in.size() - pos) / sizeof(int)) return false;
     f.resize(k);
-    std::memcpy(f.data(), in.data() + pos, k * sizeof(int));
+    if (k > 0) std::memcpy(f.data(), in.data() + pos, k * sizeof(int));  // an empty face has no data()
     pos += k * sizeof(int);
   }
   return pos == in.size();
