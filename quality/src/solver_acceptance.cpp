@@ -8,6 +8,12 @@
 
 namespace blayer {
 
+PolyFace reversed(const PolyFace& f) {
+  PolyFace r = f;
+  std::reverse(r.p.begin(), r.p.begin() + f.n);
+  return r;
+}
+
 namespace {
 
 // OpenFOAM guards its divisions with ROOTVSMALL = 1e-150 (double builds); the same
@@ -28,6 +34,53 @@ double circumradius(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) 
   if (std::abs(den) < kRootVSmall) return std::numeric_limits<double>::infinity();
   const Vec3 o = (norm2(u) * cross(v, w) + norm2(v) * cross(w, u) + norm2(w) * cross(u, v)) / den;
   return norm(o);
+}
+
+constexpr double kRegularTet = 8.0 / (9.0 * 1.7320508075688772935);  // 8 / (9 sqrt 3)
+
+// tet_quality(a, b, c, d) > tol, without the division and with an early exit on a tet
+// that is not positive (tol >= 0).
+bool tet_quality_above(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double tol) {
+  const Vec3 u = b - a, v = c - a, w = d - a;
+  const Vec3 vw = cross(v, w);
+  const double det = dot(u, vw);  // 6 x the volume
+  if (!(det > 0.0)) return false;
+  const Vec3 wu = cross(w, u), uv = cross(u, v);
+  const Vec3 o2 = norm2(u) * vw + norm2(v) * wu + norm2(w) * uv;  // 2 det x circumcentre - a
+  const double r = std::min(norm(o2) / (2.0 * det), 1e15);
+  return det / 6.0 > tol * (kRegularTet * r * r * r + kRootVSmall);
+}
+
+// Every tet (c, base, p_i, p_i+1) of the fan from `base` above tol; `flip` reverses the
+// fan's triangles (the neighbour's side of an internal face).
+bool fan_above(const PolyFace& f, int base, const Vec3& c, bool flip, double tol) {
+  for (int k = 1; k < f.n - 1; ++k) {
+    const Vec3& a = f.p[(base + k) % f.n];
+    const Vec3& b = f.p[(base + k + 1) % f.n];
+    if (!(flip ? tet_quality_above(c, f.p[base], b, a, tol) : tet_quality_above(c, f.p[base], a, b, tol))) return false;
+  }
+  return true;
+}
+
+// Every tet (c, Cf, p_i, p_i+1) of the fan about the face centre above tol.
+bool centre_fan_above(const PolyFace& f, const Vec3& face_centre, const Vec3& c, double tol) {
+  for (int i = 0; i < f.n; ++i)
+    if (!tet_quality_above(c, face_centre, f.p[i], f.p[(i + 1) % f.n], tol)) return false;
+  return true;
+}
+
+// checkMesh's face tets (see the header) with limit tol: OpenFOAM takes the first base
+// point that works, so this stops at it too. A triangle's centre-fan tets are the
+// thirds of its one base tet (its centre is the centroid), so with a base tet of
+// quality above tol >= 1e-12 -- a volume above 6e-14 L^3 for extent L -- each third
+// is positive far beyond the 1e-16 L^3 rounding: only the base tet is computed.
+bool face_tets_above(const PolyFace& f, const FaceGeometry& g, const Vec3& own, const Vec3* nei, double tol) {
+  if (f.n == 3) return fan_above(f, 0, own, false, tol) && (!nei || fan_above(f, 0, *nei, true, tol));
+  if (!centre_fan_above(f, g.centre, own, tol)) return false;
+  if (nei && !centre_fan_above(reversed(f), g.centre, *nei, tol)) return false;
+  for (int base = 0; base < f.n; ++base)
+    if (fan_above(f, base, own, false, tol) && (!nei || fan_above(f, base, *nei, true, tol))) return true;
+  return false;
 }
 
 // Worst tet of the fan from base point `base` about centre c; `flip` reverses the fan's
@@ -59,13 +112,14 @@ Vec3 skew_vector(const FaceGeometry& g, const Vec3& own, const Vec3& d) {
   return cpf - (dot(g.area, cpf) / (dot(g.area, d) + kRootVSmall)) * d;
 }
 
-}  // namespace
-
-PolyFace reversed(const PolyFace& f) {
-  PolyFace r = f;
-  std::reverse(r.p.begin(), r.p.begin() + f.n);
-  return r;
+// face_non_orthogonality_deg(g, own, nei) <= limit_deg, compared as cosines.
+bool non_orthogonality_within(const FaceGeometry& g, const Vec3& own, const Vec3& nei, double limit_deg) {
+  const Vec3 d = nei - own;
+  const double c = dot(d, g.area) / (norm(d) * norm(g.area) + kRootVSmall);
+  return c >= std::cos(limit_deg / kRadToDeg);
 }
+
+}  // namespace
 
 FaceGeometry face_geometry(const PolyFace& f) {
   FaceGeometry g;
@@ -129,8 +183,7 @@ double face_pyramid_volume(const FaceGeometry& g, const Vec3& cell_centre) {
 double tet_quality(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const double volume = dot(b - a, cross(c - a, d - a)) / 6.0;
   const double r = std::min(circumradius(a, b, c, d), 1e15);  // OpenFOAM caps it at GREAT
-  constexpr double kRegular = 8.0 / (9.0 * 1.7320508075688772935);
-  return volume / (kRegular * r * r * r + kRootVSmall);
+  return volume / (kRegularTet * r * r * r + kRootVSmall);
 }
 
 double face_tet_quality(const PolyFace& f, const Vec3& own, const Vec3* nei) {
@@ -204,19 +257,17 @@ const char* acceptance_failure_name(AcceptanceFailure f) {
 AcceptanceFailure judge_face(const PolyFace& f, const FaceGeometry& g, const Vec3& own, FaceSide side,
                              const Vec3& other, const AcceptanceLimits& limits) {
   const bool internal = side == FaceSide::kInternal;
-  if (limits.face_decomposition) {
+  if (limits.face_pyramids) {
     if (!(face_pyramid_volume(g, own) > 0.0)) return AcceptanceFailure::kFacePyramid;
     if (internal && !(-face_pyramid_volume(g, other) > 0.0)) return AcceptanceFailure::kFacePyramid;
-    if (!(face_centre_tet_quality(f, g, own) > kMinFaceTetQuality) ||
-        (internal && !(face_centre_tet_quality(reversed(f), g, other) > kMinFaceTetQuality)) ||
-        !(face_tet_quality(f, own, internal ? &other : nullptr) > kMinFaceTetQuality))
-      return AcceptanceFailure::kFaceTets;
   }
+  if (limits.face_tets && !face_tets_above(f, g, own, internal ? &other : nullptr, kMinFaceTetQuality))
+    return AcceptanceFailure::kFaceTets;
   if (limits.max_face_warp_deg > 0.0 && f.n == 4 && !(face_warp_deg(f) <= limits.max_face_warp_deg))
     return AcceptanceFailure::kFaceWarp;
   if (internal) {
     if (limits.max_non_orthogonality_deg > 0.0 &&
-        !(face_non_orthogonality_deg(g, own, other) <= limits.max_non_orthogonality_deg))
+        !non_orthogonality_within(g, own, other, limits.max_non_orthogonality_deg))
       return AcceptanceFailure::kNonOrthogonality;
     if (limits.max_skewness > 0.0 && !(face_skewness(f, g, own, other) <= limits.max_skewness))
       return AcceptanceFailure::kSkewness;

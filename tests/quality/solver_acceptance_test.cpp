@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "blayer/quality/cell_validity.h"
+#include "lcg.h"
 #include "test_cells.h"
 
 namespace blayer {
@@ -86,7 +87,7 @@ TEST(SolverAcceptance, UnitCubeHasCentredFacesAndCentreAndNoSkewness) {
     // (1/12) / (8 / (9 sqrt 3) x 27/64) = 2 / (3 sqrt 3).
     EXPECT_NEAR(face_tet_quality(c.faces[i], c.cell.centre, nullptr), 2.0 / (3.0 * std::sqrt(3.0)), kTol);
   }
-  AcceptanceLimits all{70.0, 4.0, 4.0, 10.0, true};
+  AcceptanceLimits all{70.0, 4.0, 4.0, 10.0, true, true};
   EXPECT_EQ(judge_lone_cell(CellType::kHex, test::unit_hex().data(), all), AcceptanceFailure::kNone);
 }
 
@@ -206,7 +207,7 @@ TEST(SolverAcceptance, PyramidWithItsApexFarOutsideItsBaseIsValidButSkewed) {
             AcceptanceFailure::kBoundarySkewness);
   // The pyramids and the face tets of this convex cell are all positive.
   AcceptanceLimits decomposition;
-  decomposition.face_decomposition = true;
+  decomposition.face_pyramids = decomposition.face_tets = true;
   EXPECT_EQ(judge_lone_cell(CellType::kPyramid, p.data(), decomposition), AcceptanceFailure::kNone);
 }
 
@@ -218,7 +219,7 @@ TEST(SolverAcceptance, FacePyramidAndFaceTetsFailForACentreOutsideTheFace) {
   EXPECT_LT(face_pyramid_volume(c.geo[0], outside), 0.0);
   EXPECT_LT(face_tet_quality(c.faces[0], outside, nullptr), 0.0);
   AcceptanceLimits decomposition;
-  decomposition.face_decomposition = true;
+  decomposition.face_pyramids = decomposition.face_tets = true;
   EXPECT_EQ(judge_face(c.faces[0], c.geo[0], outside, FaceSide::kBoundary, outside, decomposition),
             AcceptanceFailure::kFacePyramid);
   // As an internal face: the neighbour's centre on the owner's side fails it too.
@@ -242,12 +243,43 @@ TEST(SolverAcceptance, TwistedQuadBetweenTwoCellsHasNoSharedTetDecomposition) {
   EXPECT_GT(face_tet_quality(reversed, above, nullptr), 0.0);
   EXPECT_LT(face_tet_quality(q, below, &above), 0.0);
   AcceptanceLimits decomposition;
-  decomposition.face_decomposition = true;
+  decomposition.face_pyramids = decomposition.face_tets = true;
   const FaceGeometry g = face_geometry(q);
   EXPECT_GT(face_pyramid_volume(g, below), 0.0);
   EXPECT_LT(face_pyramid_volume(g, above), 0.0);
   EXPECT_EQ(judge_face(q, g, below, FaceSide::kInternal, above, decomposition), AcceptanceFailure::kFaceTets);
   EXPECT_EQ(judge_face(q, g, below, FaceSide::kBoundary, above, decomposition), AcceptanceFailure::kNone);
+}
+
+TEST(SolverAcceptance, AFaceWhoseTetsTheJudgeAcceptsHasEveryCheckMeshTetPositive) {
+  // Random triangles and quads (warped up to the size of the face) with random centres
+  // on either side: the judge's face-tet verdict (its early exits, and the base tet
+  // alone for triangles) against every tet checkMesh looks at, computed in full.
+  testing::Lcg rng(3);
+  auto jitter = [&](double r) {
+    return Vec3{r * (rng.uniform() - 0.5), r * (rng.uniform() - 0.5), r * (rng.uniform() - 0.5)};
+  };
+  AcceptanceLimits tets;
+  tets.face_tets = true;
+  int n_accepted = 0, n_refused = 0;
+  for (int i = 0; i < 20000; ++i) {
+    PolyFace f;
+    f.n = i % 2 ? 4 : 3;
+    const Vec3 square[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    for (int k = 0; k < f.n; ++k) f.p[k] = square[k] + jitter(0.6);
+    const FaceGeometry g = face_geometry(f);
+    const Vec3 own = Vec3{0.5, 0.5, -0.3} + jitter(0.8), nei = Vec3{0.5, 0.5, 0.3} + jitter(0.8);
+    const bool internal = i % 3 != 0;
+    const FaceSide side = internal ? FaceSide::kInternal : FaceSide::kBoundary;
+    const bool judged = judge_face(f, g, own, side, nei, tets) == AcceptanceFailure::kNone;
+    const bool check_mesh = face_centre_tet_quality(f, g, own) > 1e-30 &&
+                            (!internal || face_centre_tet_quality(reversed(f), g, nei) > 1e-30) &&
+                            face_tet_quality(f, own, internal ? &nei : nullptr) > 1e-30;
+    EXPECT_TRUE(!judged || check_mesh) << "face " << i << ": accepted here, refused by checkMesh";
+    (judged ? n_accepted : n_refused)++;
+  }
+  EXPECT_GT(n_accepted, 1000);
+  EXPECT_GT(n_refused, 1000);
 }
 
 TEST(SolverAcceptance, LimitsOfZeroJudgeNothing) {

@@ -3,8 +3,9 @@
 // computes them, so that a cell judged here is judged the same way by the solver. The
 // exact corner-tet test (cell_validity.h) says a cell is a valid polyhedron; these say
 // whether the solver's own geometry -- face centres, area vectors, cell centres built
-// from them -- is usable: a valid prism can still have a face whose pyramid about the
-// cell centre is inverted, or a side quad so warped that no diagonal of it decomposes.
+// from them -- is usable: two valid prisms can share a face so skewed or so
+// non-orthogonal that checkMesh fails the mesh, or a twisted side quad that no diagonal
+// decomposes for both of them.
 //
 // Geometry (OpenFOAM's definitions, reimplemented):
 //   face centre and area vector: a triangle's centroid and half the cross product of
@@ -31,25 +32,30 @@
 //                    same base point on both sides of an internal face (the
 //                    decomposition OpenFOAM's particle tracking and tet-based
 //                    interpolation use).
-//                  A face passes when every tet of both scores above 1e-30.
+//                  checkMesh fails a face when a tet of either part scores 1e-30 or
+//                  less; the face_tets limit asks for more (kMinFaceTetQuality).
 //   non-orthogonality  the angle between Cn - Co and S, degrees; internal faces only.
+//                  checkMesh calls a face severe above 70 degrees and fails the mesh at
+//                  90 (cosine below 1e-15).
 //   skewness       the distance from Cf to where the line Co-Cn crosses the face's
 //                  plane, over the face's extent in that direction (at least 0.2 |Cn -
 //                  Co|). A boundary face is measured against the mirror of its cell:
 //                  the line from Co along the face normal, the extent at least 0.4 x
-//                  the distance from Co to the plane.
-//   flatness       |S| over the summed areas of the fan about Cf: 1 for a plane face,
+//                  the distance from Co to the plane. checkMesh fails the mesh above 4,
+//                  internal and boundary alike.
+//   flatness       |S| over the summed areas of the fan about Cf: 1 for a plane face.
 //                  checkMesh -allGeometry warns below 0.8, snappyHexMesh's default
 //                  minFlatness is 0.5.
 //   warp           not an OpenFOAM figure: the largest angle between the normals of the
 //                  two triangles of a diagonal split of a quad, over both diagonals
-//                  (cell_metrics.h twist_deg); 0 for a triangle. For a quad folded
-//                  symmetrically along a diagonal by an angle w, the flatness is about
-//                  cos(w / 2): checkMesh's 0.8 is a 74 degree fold, snappy's 0.5 120.
+//                  (cell_metrics.h twist_deg); 0 for a triangle. A unit square folded
+//                  along a diagonal by 60, 93 and 136 degrees has flatness 0.93, 0.80
+//                  and 0.50; a thin quad's split triangles are slivers, so a small
+//                  twist of a boundary-layer side quad is a large warp.
 //
 // Every function is plain floating point (these are OpenFOAM's floating-point figures);
-// none throws. Degenerate input (zero area, coincident centres) gives the value OpenFOAM
-// would print, e.g. skewness 0 and non-orthogonality 90 for coincident centres.
+// none throws. Divisions carry OpenFOAM's own guards (1e-150 added to denominators), so
+// degenerate input (zero areas, coincident centres) gives the figure OpenFOAM prints.
 #pragma once
 
 #include <array>
@@ -112,20 +118,23 @@ struct AcceptanceLimits {
   double max_skewness = 0.0;               // internal faces
   double max_boundary_skewness = 0.0;      // boundary faces
   double max_face_warp_deg = 0.0;          // quads
-  // Face pyramids positive and face tets above min_face_tet_quality on every face.
-  bool face_decomposition = false;
+  bool face_pyramids = false;              // every face pyramid positive
+  bool face_tets = false;                  // every face tet above kMinFaceTetQuality
   bool any() const {
     return max_non_orthogonality_deg > 0.0 || max_skewness > 0.0 || max_boundary_skewness > 0.0 ||
-           max_face_warp_deg > 0.0 || face_decomposition;
+           max_face_warp_deg > 0.0 || face_pyramids || face_tets;
   }
 };
 
-// The smallest face-tet quality accepted by the face_decomposition limit. checkMesh
-// accepts anything above 1e-30 (sqr(SMALL)); snappyHexMesh's templates use 1e-30 to
-// 1e-9. 1e-9 keeps 21 orders between the two for the rounding of the centres; a tet
-// of quality 1e-9 is a sliver a billion times flatter than regular, far beyond the
-// thinnest layer cells (a prism 1000 times wider than high scores about 1e-5).
-constexpr double kMinFaceTetQuality = 1e-9;
+// The smallest face-tet quality accepted by the face_tets limit. checkMesh
+// accepts anything above 1e-30 (sqr(SMALL)). A tet quality computed from coordinates of
+// extent L carries a rounding error of about 1e-16 x (L / R)^3 <= 1e-15, and OpenFOAM's
+// cell centres differ from these by the rounding of another summation order, which
+// moves the quality by as much again: 1e-12 keeps a margin of 300 over both, so a tet
+// accepted here is positive for checkMesh too. It is not a shape limit: the thin
+// side-quad fans at the ONERA M6 tip score 5e-10, and a limit of 1e-9 ended 116
+// columns there, 6.2 % of the wall area.
+constexpr double kMinFaceTetQuality = 1e-12;
 
 // Where the other side of a face is.
 enum class FaceSide {
@@ -146,7 +155,10 @@ enum class AcceptanceFailure {
 };
 const char* acceptance_failure_name(AcceptanceFailure f);
 
-// Judges face f (oriented out of the cell centred at `own`) against the limits.
+// Judges face f (oriented out of the cell centred at `own`) against the limits; with
+// kUnknown only this side's pyramid and face tets and the warp. A face it accepts has
+// every face tet of checkMesh positive (for a triangle only the base tet is computed:
+// its centre-fan tets are its thirds, positive when it scores above 1e-12).
 AcceptanceFailure judge_face(const PolyFace& f, const FaceGeometry& g, const Vec3& own, FaceSide side,
                              const Vec3& other, const AcceptanceLimits& limits);
 
