@@ -165,7 +165,7 @@ MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k, const Tolera
   return finish_feasible(f, k, best_q, best_support, tol);
 }
 
-MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& tol) {
+WolfeOutcome wolfe_min_norm_point(const Vec3* f, int k, const Tolerances& tol, MostVisibleResult* out) {
   int s[4] = {0, 0, 0, 0};
   double w[4] = {1.0, 0.0, 0.0, 0.0};
   int m = 1;
@@ -181,8 +181,17 @@ MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& to
       }
     }
     const double xx = norm2(x);
-    if (fx >= xx - kSupportSlack) return finish_feasible(f, k, x, m, tol);
-    if (xx < tol.min_visibility * tol.min_visibility) return best_margin_direction(f, k);
+    if (fx >= xx - kSupportSlack) {
+      const double len = norm(x);
+      if (!(len >= tol.min_visibility)) return WolfeOutcome::kNoVisibleDirection;
+      out->normal = x / len;
+      // V* = |q*| in exact arithmetic; the directly evaluated minimum is what callers see.
+      out->visibility = min_dot(f, k, out->normal);
+      out->feasible = out->visibility >= tol.min_visibility;
+      out->support_size = m;
+      return WolfeOutcome::kCertified;
+    }
+    if (xx < tol.min_visibility * tol.min_visibility) return WolfeOutcome::kNoVisibleDirection;
     bool in_s = false;
     for (int i = 0; i < m; ++i) in_s |= s[i] == j;
     if (in_s || m == 4) break;
@@ -193,7 +202,7 @@ MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& to
       const Vec3* pts[4];
       for (int i = 0; i < m; ++i) pts[i] = &f[s[i]];
       double alpha[4];
-      if (!affine_min_norm(pts, m, alpha)) return most_visible_by_enumeration(f, k, tol);
+      if (!affine_min_norm(pts, m, alpha)) return WolfeOutcome::kUncertified;
       bool positive = true;
       for (int i = 0; i < m; ++i) positive &= alpha[i] > 0.0;
       if (positive) {
@@ -221,12 +230,22 @@ MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& to
           ++n;
         }
       m = n;
-      if (m == 0) return most_visible_by_enumeration(f, k, tol);
+      if (m == 0) return WolfeOutcome::kUncertified;
     }
     x = Vec3{0.0, 0.0, 0.0};
     for (int i = 0; i < m; ++i) x += w[i] * f[s[i]];
     // A full-dimensional simplex with positive weights contains the origin.
-    if (m == 4) return best_margin_direction(f, k);
+    if (m == 4) return WolfeOutcome::kNoVisibleDirection;
+  }
+  return WolfeOutcome::kUncertified;
+}
+
+MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& tol) {
+  MostVisibleResult r;
+  switch (wolfe_min_norm_point(f, k, tol, &r)) {
+    case WolfeOutcome::kCertified: return r;
+    case WolfeOutcome::kNoVisibleDirection: return best_margin_direction(f, k);
+    case WolfeOutcome::kUncertified: break;
   }
   return most_visible_by_enumeration(f, k, tol);
 }
