@@ -21,25 +21,37 @@ namespace detail {
 // the circle, inside the level at which screens decide (kCircleLevel, most_normal.cpp).
 constexpr double kCircleCandidateNorm = 1e-3;
 
-// Indices of the points and arcs of a FanSites taking part.
-struct SiteSubset {
-  const int* points = nullptr;
-  int n_points = 0;
-  const int* arcs = nullptr;
-  int n_arcs = 0;
+// What a caller may rule out before or after candidates are built (each "rule out"
+// must be proved: no candidate so ruled out is needed):
+//   circle(h)          no candidate on the bisector {n.h = 0} (h unit);
+//   arc(h, g)          no candidate on that bisector with the arc of pole g among its
+//                      generators;
+//   arc_pair(g1, g2)   no candidate with both arcs among its generators;
+//   point_ok(x, w), arc_ok(x, g)
+//                      whether candidate x (any length) can have the point w, or the arc
+//                      of pole g, among its generators.
+struct NoScreen {
+  bool circle(const Vec3&) const { return false; }
+  bool arc(const Vec3&, const Vec3&) const { return false; }
+  bool arc_pair(const Vec3&, const Vec3&) const { return false; }
+  bool point_ok(const Vec3&, const Vec3&) const { return true; }
+  bool arc_ok(const Vec3&, const Vec3&) const { return true; }
 };
 
 // 1- and 2-site candidates: antipodes of points, poles of arcs, point-point and arc-arc
 // bisector peaks, and the four extrema of each point-arc parabola.
-template <class Emit>
-void single_and_pair_candidates(const FanSites& s, const SiteSubset& sub, Emit&& emit) {
+template <class Screen, class Emit>
+void single_and_pair_candidates(const FanSites& s, const SiteSubset& sub, const Screen& screen, Emit&& emit) {
   const int np = sub.n_points, na = sub.n_arcs;
   for (int a = 0; a < np; ++a) emit(-s.points[sub.points[a]].w);
-  for (int a = 0; a < na; ++a) emit(s.arcs[sub.arcs[a]].g);
+  for (int a = 0; a < na; ++a)
+    if (screen.arc_ok(s.arcs[sub.arcs[a]].g, s.arcs[sub.arcs[a]].g)) emit(s.arcs[sub.arcs[a]].g);
   for (int a = 0; a < np; ++a)
     for (int b = a + 1; b < np; ++b) emit(-(s.points[sub.points[a]].w + s.points[sub.points[b]].w));
   for (int a = 0; a < na; ++a)
-    for (int b = a + 1; b < na; ++b) emit(s.arcs[sub.arcs[a]].g + s.arcs[sub.arcs[b]].g);
+    for (int b = a + 1; b < na; ++b)
+      if (!screen.arc_pair(s.arcs[sub.arcs[a]].g, s.arcs[sub.arcs[b]].g))
+        emit(s.arcs[sub.arcs[a]].g + s.arcs[sub.arcs[b]].g);
   // Point-arc parabola extrema: where it crosses the plane of w and f, at the angles
   // tf/2 +- pi/4 (and their antipodes) from w, tf = angle(w, f). For unit w and f,
   // p = w + f and q = f - w are orthogonal, at angles tf/2 and tf/2 + pi/2, so those
@@ -54,20 +66,44 @@ void single_and_pair_candidates(const FanSites& s, const SiteSubset& sub, Emit&&
       const double lp = norm(p), lq = norm(q);
       if (lp == 0.0 || lq == 0.0) continue;
       const Vec3 x = lq * p + lp * q, y = lq * p - lp * q;
-      emit(x);
-      emit(-x);
-      emit(y);
-      emit(-y);
+      for (const Vec3& c : {x, -x, y, -y})
+        if (screen.point_ok(c, w) && screen.arc_ok(c, g)) emit(c);
     }
+}
+
+// The candidates of one site (its antipode or pole) or of one pair (bisector peak or
+// point-arc extrema) alone: single_and_pair_candidates restricted to a subset of one or
+// two sites, without repeating the single-site ones for a pair.
+template <class Screen, class Emit>
+void pair_candidates(const FanSites& s, const SiteSubset& sub, const Screen& screen, Emit&& emit) {
+  if (sub.n_points + sub.n_arcs == 1) {
+    single_and_pair_candidates(s, sub, screen, emit);
+    return;
+  }
+  if (sub.n_points == 2) {
+    emit(-(s.points[sub.points[0]].w + s.points[sub.points[1]].w));
+  } else if (sub.n_arcs == 2) {
+    if (!screen.arc_pair(s.arcs[sub.arcs[0]].g, s.arcs[sub.arcs[1]].g))
+      emit(s.arcs[sub.arcs[0]].g + s.arcs[sub.arcs[1]].g);
+  } else {
+    const Vec3& w = s.points[sub.points[0]].w;
+    const Vec3& g = s.arcs[sub.arcs[0]].g;
+    const Vec3 p = w + g, q = g - w;
+    const double lp = norm(p), lq = norm(q);
+    if (lp == 0.0 || lq == 0.0) return;
+    const Vec3 x = lq * p + lp * q, y = lq * p - lp * q;
+    for (const Vec3& c : {x, -x, y, -y})
+      if (screen.point_ok(c, w) && screen.arc_ok(c, g)) emit(c);
+  }
 }
 
 // 3-site candidates: Voronoi vertices of three points or three arcs (both signs), and
 // of two points with an arc or two arcs with a point, on the great-circle bisector of
-// the pair. skip_circle(h) may declare that no candidate on the bisector {n.h = 0} can
-// matter; its candidates are then not built, except the short cross products, whose
-// direction is too unreliable to be placed on the circle.
-template <class SkipCircle, class Emit>
-void triple_candidates(const FanSites& s, const SiteSubset& sub, SkipCircle&& skip_circle, Emit&& emit) {
+// the pair. Candidates the screen rules out are not built, except the short cross
+// products of a ruled-out circle or arc, whose direction is too unreliable to be placed
+// on the circle.
+template <class Screen, class Emit>
+void triple_candidates(const FanSites& s, const SiteSubset& sub, const Screen& screen, Emit&& emit) {
   const int np = sub.n_points, na = sub.n_arcs;
   auto pw = [&](int a) -> const Vec3& { return s.points[sub.points[a]].w; };
   auto ag = [&](int a) -> const Vec3& { return s.arcs[sub.arcs[a]].g; };
@@ -75,28 +111,40 @@ void triple_candidates(const FanSites& s, const SiteSubset& sub, SkipCircle&& sk
     for (int b = a + 1; b < np; ++b)
       for (int c = b + 1; c < np; ++c) {
         const Vec3 h = cross(pw(a) - pw(b), pw(b) - pw(c));
-        emit(h);
-        emit(-h);
+        for (const Vec3& x : {h, -h})
+          if (screen.point_ok(x, pw(a))) emit(x);
       }
   for (int a = 0; a < na; ++a)
-    for (int b = a + 1; b < na; ++b)
+    for (int b = a + 1; b < na; ++b) {
+      if (screen.arc_pair(ag(a), ag(b))) continue;
       for (int c = b + 1; c < na; ++c) {
+        if (screen.arc_pair(ag(a), ag(c)) || screen.arc_pair(ag(b), ag(c))) continue;
         const Vec3 h = cross(ag(a) - ag(b), ag(b) - ag(c));
-        emit(h);
-        emit(-h);
+        for (const Vec3& x : {h, -h})
+          if (screen.arc_ok(x, ag(a))) emit(x);
       }
+    }
   // Point-point bisector (great circle) against point-arc bisector (cone).
   for (int a = 0; a < np; ++a)
     for (int b = a + 1; b < np; ++b) {
       const Vec3 h = normalized(pw(a) - pw(b));
       if (norm2(h) == 0.0) continue;
-      const bool skipped = skip_circle(h);
+      // The circle screen is the costly one: asked only when an arc survives its own.
+      int circle_state = -1;  // unknown
       for (int c = 0; c < na; ++c) {
+        bool arc_skipped = screen.arc(h, ag(c));
+        if (!arc_skipped) {
+          if (circle_state < 0) circle_state = screen.circle(h) ? 1 : 0;
+          arc_skipped = circle_state == 1;
+        }
         const Vec3 x = cross(h, cross(pw(a), ag(c)));
-        if (skipped && norm(x) >= kCircleCandidateNorm) continue;
-        if (!skipped) circle_cone(h, 0.0, pw(a), ag(c), emit);
-        emit(x);
-        emit(-x);
+        if (arc_skipped && norm(x) >= kCircleCandidateNorm) continue;
+        auto filtered = [&](const Vec3& y) {
+          if (screen.point_ok(y, pw(a)) && screen.arc_ok(y, ag(c))) emit(y);
+        };
+        if (!arc_skipped) circle_cone(h, 0.0, pw(a), ag(c), filtered);
+        filtered(x);
+        filtered(-x);
       }
     }
   // Arc-arc bisector (great circle) against point-arc bisector (cone).
@@ -104,13 +152,16 @@ void triple_candidates(const FanSites& s, const SiteSubset& sub, SkipCircle&& sk
     for (int b = a + 1; b < na; ++b) {
       const Vec3 h = normalized(ag(a) - ag(b));
       if (norm2(h) == 0.0) continue;
-      const bool skipped = skip_circle(h);
+      const bool skipped = screen.arc_pair(ag(a), ag(b)) || (np > 0 && screen.circle(h));
       for (int c = 0; c < np; ++c) {
         const Vec3 x = cross(h, cross(pw(c), ag(a)));
         if (skipped && norm(x) >= kCircleCandidateNorm) continue;
-        if (!skipped) circle_cone(h, 0.0, pw(c), ag(a), emit);
-        emit(x);
-        emit(-x);
+        auto filtered = [&](const Vec3& y) {
+          if (screen.point_ok(y, pw(c)) && screen.arc_ok(y, ag(a))) emit(y);
+        };
+        if (!skipped) circle_cone(h, 0.0, pw(c), ag(a), filtered);
+        filtered(x);
+        filtered(-x);
       }
     }
 }
@@ -203,6 +254,95 @@ void plateau_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* f
       at(phi - da);
     }
   }
+}
+
+// The local maxima of V = min over `faces` of n.f along the part of a plateau circle
+// inside the cap B(centre, cos_radius = cos of its radius): on the circle
+// n(t) = c0 h + s (cos t e1 + sin t e2) each term is a_i + b_i cos t + c_i sin t, and V,
+// their lower envelope, peaks at a peak of the term it follows or where it switches
+// terms. The envelope is swept from the window's start, switching to the first term that
+// crosses below; O(n_faces) per switch instead of all O(n_faces^2) pairwise equalities.
+template <class Emit>
+void plateau_envelope_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* faces, int n_faces,
+                            const Vec3& centre, double cos_radius, std::vector<double>* ca, std::vector<double>* cb,
+                            std::vector<double>* cc, Emit&& emit) {
+  if (n_faces == 0) return;
+  Vec3 e1, e2;
+  orthonormal_complement(circ.h, &e1, &e2);
+  const double s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
+  if (!(s > 0.0)) return;
+  // Window: n(t).centre >= cos_radius, i.e. r cos(t - tc) >= mu.
+  const double hc = dot(circ.h, centre), xc = dot(e1, centre), yc = dot(e2, centre);
+  const double r = s * std::hypot(xc, yc);
+  const double mu = cos_radius - circ.c0 * hc;
+  double t0, t1;
+  if (!(r > 0.0) || mu <= -r) {
+    t0 = 0.0;
+    t1 = 2.0 * M_PI;
+  } else if (mu > r) {
+    return;
+  } else {
+    const double tc = std::atan2(yc, xc), half = std::acos(mu / r);
+    t0 = tc - half;
+    t1 = tc + half;
+  }
+  ca->resize(n_faces);
+  cb->resize(n_faces);
+  cc->resize(n_faces);
+  for (int i = 0; i < n_faces; ++i) {
+    const Vec3& f = g.face_normals[faces[i]];
+    (*ca)[i] = circ.c0 * dot(circ.h, f);
+    (*cb)[i] = s * dot(e1, f);
+    (*cc)[i] = s * dot(e2, f);
+  }
+  const double* a = ca->data();
+  const double* b = cb->data();
+  const double* c = cc->data();
+  auto term = [&](int i, double t) { return a[i] + b[i] * std::cos(t) + c[i] * std::sin(t); };
+  auto slope = [&](int i, double t) { return -b[i] * std::sin(t) + c[i] * std::cos(t); };
+  auto at = [&](double t) { emit(circ.c0 * circ.h + s * (std::cos(t) * e1 + std::sin(t) * e2)); };
+  // The term that is lowest at t0 (and lowest just after it on ties).
+  int cur = 0;
+  for (int i = 1; i < n_faces; ++i) {
+    const double d = term(i, t0) - term(cur, t0);
+    if (d < 0.0 || (d == 0.0 && slope(i, t0) < slope(cur, t0))) cur = i;
+  }
+  double t = t0;
+  at(t);
+  for (int guard = 0; guard < 4 * n_faces + 8; ++guard) {
+    // First crossing after t at which another term goes below the current one.
+    double next = t1;
+    int who = -1;
+    for (int j = 0; j < n_faces; ++j) {
+      if (j == cur) continue;
+      const double A = a[j] - a[cur], B = b[j] - b[cur], C = c[j] - c[cur];
+      const double amp = std::hypot(B, C);
+      if (!(amp > 0.0) || std::fabs(A) > amp) continue;
+      const double phi = std::atan2(C, B), da = std::acos(-A / amp);
+      for (double root : {phi + da, phi - da}) {
+        // The difference A + amp cos(t - phi) falls through zero where its slope
+        // -amp sin(t - phi) < 0.
+        if (!(-std::sin(root - phi) < 0.0)) continue;
+        double tr = root;
+        while (tr <= t) tr += 2.0 * M_PI;
+        while (tr - 2.0 * M_PI > t) tr -= 2.0 * M_PI;
+        if (tr < next) {
+          next = tr;
+          who = j;
+        }
+      }
+    }
+    // The current term's own peak, if inside the stretch it leads.
+    double peak = std::atan2(c[cur], b[cur]);
+    while (peak < t) peak += 2.0 * M_PI;
+    while (peak - 2.0 * M_PI >= t) peak -= 2.0 * M_PI;
+    if (peak <= next) at(peak);
+    if (who < 0) break;
+    at(next);
+    t = next;
+    cur = who;
+  }
+  at(t1);
 }
 
 }  // namespace detail

@@ -14,6 +14,22 @@ constexpr double kCheapTestMargin = 1e-15;
 
 }  // namespace
 
+bool fluid_side_at_vertex(const FanGeometry& g, int j, const Vec3& n) {
+  const int k = g.n_faces();
+  const Vec3& w = g.dirs[j];
+  const Vec3& prev = g.dirs[(j + k - 1) % k];
+  const Vec3& next = g.dirs[(j + 1) % k];
+  const Vec3 t_in = prev - dot(prev, w) * w;
+  const Vec3 t_out = next - dot(next, w) * w;
+  const Vec3 t_n = n - dot(n, w) * w;
+  const Vec3 left = cross(w, t_out);
+  auto beta = [&](const Vec3& x) {
+    const double b = std::atan2(dot(left, x), dot(t_out, x));
+    return b < 0.0 ? b + 2.0 * M_PI : b;
+  };
+  return beta(t_n) < beta(t_in);
+}
+
 CandidatePool::CandidatePool(const FanGeometry& g, const Tolerances& tol, bool constrained, double v_min)
     : g_(g), tol_(tol), constrained_(constrained), v_min_(v_min) {
   arc_tests_.resize(g.n_faces());
@@ -117,20 +133,7 @@ bool CandidatePool::evaluate(const Vec3& n, double thr, double* d_out, bool* flu
     *fluid = dot(n, g_.face_normals[feature_arc]) > 0.0;
     return true;
   }
-  // Link vertex j joins arc j-1 (incoming) and arc j (outgoing).
-  const int j = feature_kind == 1 ? feature_arc : (feature_arc + 1) % k;
-  const Vec3& w = g_.dirs[j];
-  const Vec3& prev = g_.dirs[(j + k - 1) % k];
-  const Vec3& next = g_.dirs[(j + 1) % k];
-  const Vec3 t_in = prev - dot(prev, w) * w;
-  const Vec3 t_out = next - dot(next, w) * w;
-  const Vec3 t_n = n - dot(n, w) * w;
-  const Vec3 left = cross(w, t_out);
-  auto beta = [&](const Vec3& x) {
-    const double b = std::atan2(dot(left, x), dot(t_out, x));
-    return b < 0.0 ? b + 2.0 * M_PI : b;
-  };
-  *fluid = beta(t_n) < beta(t_in);
+  *fluid = fluid_side_at_vertex(g_, feature_kind == 1 ? feature_arc : (feature_arc + 1) % k, n);
   return true;
 }
 
@@ -154,11 +157,11 @@ void CandidatePool::consider(Vec3 n) {
   // candidate it passes has its exact D, then meets the threshold of its feasibility.
   double d;
   bool fluid;
-  if (!evaluate(n, best_c_ - tol_.normality_tie, &d, &fluid) || !fluid) return;
+  if (!evaluate(n, threshold(), &d, &fluid) || !fluid) return;
   const double v = fan_visibility(g_, n);
   const bool feasible = !constrained_ || v >= v_min_ - kConstraintSlack;
   if (constrained_pass_ && !feasible) return;
-  if (!feasible && d < best_u_ - tol_.normality_tie) return;
+  if (!feasible && d < unconstrained_threshold()) return;
   if (d > best_u_) {
     best_u_ = d;
     maxima_u_.erase(std::remove_if(maxima_u_.begin(), maxima_u_.end(),

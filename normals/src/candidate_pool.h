@@ -5,6 +5,8 @@
 // offer. Internal to blayer_normals.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -26,6 +28,11 @@ constexpr double kDistinctMaximizers = 1e-6;
 // their computed V carries ~1e-16 rounding, 1e-12 accepts them without admitting any
 // meaningfully invisible direction.
 constexpr double kConstraintSlack = 1e-12;
+
+// Whether unit n, whose nearest link feature is link vertex j (joining arc j-1, incoming,
+// and arc j, outgoing), lies on the fluid side: the tangent towards n at u_j must fall
+// in the fluid wedge, left of the turn from the outgoing arc to the incoming one.
+bool fluid_side_at_vertex(const FanGeometry& g, int j, const Vec3& n);
 
 struct Maximizer {
   Vec3 n;
@@ -52,8 +59,15 @@ class CandidatePool {
 
   double best_constrained() const { return best_c_; }
   double best_unconstrained() const { return best_u_; }
-  // Candidates below this cannot become maximisers any more.
-  double threshold() const { return best_c_ - tol_.normality_tie; }
+  // Candidates below this cannot become maximisers any more (with or without the
+  // constraint).
+  double threshold() const { return std::max(best_c_, floor_) - tol_.normality_tie; }
+  double unconstrained_threshold() const { return std::max(best_u_, floor_) - tol_.normality_tie; }
+  // Declares that some fluid, feasible direction reaches D = d (a warm start's rebuilt
+  // candidate): the optimum does too, so candidates more than the tie below d are
+  // dropped as they come, without d entering the maximisers or the tie-break.
+  void raise_floor(double d) { floor_ = std::max(floor_, d); }
+  double floor() const { return floor_; }
   const Tolerances& tolerances() const { return tol_; }
   bool constrained() const { return constrained_; }
   double v_min() const { return v_min_; }
@@ -66,6 +80,8 @@ class CandidatePool {
   bool constrained_maxima_distinct() const { return distinct(maxima_); }
   bool has_maximizer() const { return !maxima_.empty(); }
   const Maximizer& last_maximizer() const { return maxima_.back(); }
+  // The maximisers within the tie of the constrained optimum (diagnostics).
+  const std::vector<Maximizer>& maximizers() const { return maxima_; }
   int n_candidates() const { return n_candidates_; }
 
   // The maximiser of largest V among those within the tie of the optimum, with the
@@ -83,6 +99,7 @@ class CandidatePool {
   bool constrained_pass_ = false;
   double best_c_ = -std::numeric_limits<double>::infinity();
   double best_u_ = -std::numeric_limits<double>::infinity();
+  double floor_ = -std::numeric_limits<double>::infinity();
   std::vector<Maximizer> maxima_;    // D >= best_c_ - tie among V >= V_min
   std::vector<Maximizer> maxima_u_;  // D >= best_u_ - tie, any V
   int n_candidates_ = 0;
@@ -99,6 +116,60 @@ class CandidatePool {
   mutable double cos_thr_ = 2.0;
   mutable double sin_thr_ = -1.0;
   mutable int last_reject_ = 0;
+};
+
+// Generators that cannot give a maximiser any more. A critical point x of D is built
+// from sites nearest to it: a point site w there has angle(x, w) = D(x), an arc site c
+// has its foot inside and arcsin|x.g_c| = D(x). A candidate that can still become a
+// maximiser has D(x) >= thr (the pool's threshold, which only rises), so
+//   x.w <= cos(thr) |x|  and  |x.g_c| >= sin(thr) |x|:
+// x lies within 90 deg - thr of +-g_c, a bisector {n.h = 0} carrying it passes that
+// near, |h.g_c| <= cos thr, and two arc generators have poles (or antipodes) at most
+// 2 (90 deg - thr) apart; above 90 degrees no arc generates a maximiser at all.
+// Candidates so ruled out that are not critical points (built from a site that is not
+// nearest to them) are lost; those are not needed (site_subdivision.h, "Exactness").
+class ArcReachScreen {
+ public:
+  explicit ArcReachScreen(const CandidatePool& pool) : pool_(pool) {}
+  bool circle(const Vec3&) const { return false; }
+  bool arc(const Vec3& h, const Vec3& g) const {
+    update();
+    if (!active_) return false;
+    return no_arcs_ || std::fabs(dot(h, g)) > cos_thr_ + kMargin;
+  }
+  bool arc_pair(const Vec3& a, const Vec3& b) const {
+    update();
+    if (!active_) return false;
+    // Both within 90 deg - thr of +-g: |a.b| >= cos(2 (90 deg - thr)) = -cos(2 thr).
+    return no_arcs_ || std::fabs(dot(a, b)) < cos_pair_ - kMargin;
+  }
+  bool point_ok(const Vec3& x, const Vec3& w) const {
+    update();
+    return !active_ || dot(x, w) <= (cos_thr_ + kMargin) * norm(x);
+  }
+  bool arc_ok(const Vec3& x, const Vec3& g) const {
+    update();
+    if (!active_) return true;
+    return !no_arcs_ && std::fabs(dot(x, g)) >= (sin_thr_ - kMargin) * norm(x);
+  }
+
+ private:
+  // Rounding allowance of the dot products and of the threshold.
+  static constexpr double kMargin = 1e-12;
+  void update() const {
+    const double thr = pool_.threshold() - kMargin;
+    if (thr == thr_) return;
+    thr_ = thr;
+    active_ = thr > 0.0;
+    no_arcs_ = thr >= 0.5 * M_PI;
+    cos_thr_ = std::cos(thr);
+    sin_thr_ = std::sin(thr);
+    cos_pair_ = -std::cos(2.0 * thr);
+  }
+  const CandidatePool& pool_;
+  mutable double thr_ = std::numeric_limits<double>::quiet_NaN();
+  mutable bool active_ = false, no_arcs_ = false;
+  mutable double cos_thr_ = 1.0, sin_thr_ = 0.0, cos_pair_ = -1.0;
 };
 
 }  // namespace detail

@@ -34,6 +34,14 @@ struct FanSites {
   bool all_reflex = false;           // every junction reflex or straight (convex corner)
 };
 
+// Indices of the points and arcs of a FanSites taking part.
+struct SiteSubset {
+  const int* points = nullptr;
+  int n_points = 0;
+  const int* arcs = nullptr;
+  int n_arcs = 0;
+};
+
 // Junction j (between arcs j-1 and j at dirs[j]) is straight when
 // |f_{j-1}.u_{j+1}| <= tol.coplanar_arc with f_{j-1}.f_j > 0, reflex when not straight
 // and f_{j-1}.u_{j+1} < 0. Consecutive arcs over straight junctions merge while the

@@ -1,14 +1,20 @@
 #include "blayer/normals/most_normal.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "blayer/normals/most_visible.h"
 #include "blayer/normals/weighted_normal.h"
+#include "candidate_families.h"
 #include "candidate_pool.h"
 #include "fan_sites.h"
+#include "link_vertex_lens.h"
 #include "most_normal_enumeration.h"
+#include "site_subdivision.h"
 #include "sphere_solvers.h"
 
 namespace blayer {
@@ -53,7 +59,19 @@ double cap_falloff(const FanGeometry& g, const MostVisibleResult& cap) {
   return widest >= M_PI ? 0.0 : std::cos(0.5 * widest);
 }
 
-enum class Strategy { kEnumeration, kPrunedEnumeration };
+// The link-vertex bound region is used when the threshold exceeds pi/2 by this (its
+// caps must be smaller than hemispheres to be convex), and when it fits in a cap of this
+// radius (larger ones are covered as fast by the whole-sphere subdivision).
+constexpr double kLensThresholdMargin = 1e-9;
+constexpr double kMaxLensRadius = 0.5;
+
+// The cap holding the link vertices needs only a positive margin to bound the region
+// (its radius below 90 degrees), not the visibility margin of a prism: near-flat links
+// lie within 1e-4 of a great circle. 1e-12 stays six orders above the rounding of its
+// dot products.
+constexpr double kLensCapMargin = 1e-12;
+
+enum class Strategy { kEnumeration, kPrunedEnumeration, kSubdivision };
 
 // Winding number of the link around n (every triangle seen from n): one turn means a
 // simple link with n inside its fluid region.
@@ -108,13 +126,191 @@ bool cap_bound_shortcut(const FanGeometry& g, const FanSites& sites, const Toler
   return true;
 }
 
-MostNormalResult solve(const FanGeometry& g, const Tolerances& tol, bool constrain_visibility, Strategy strategy) {
+// Fans with at most this many sites (reflex vertices plus merged arcs) whose optimum is
+// not bounded by the link-vertex lens are solved by the screened enumeration, larger ones
+// by the subdivision: the crossover measured on the public meshes' fans and fronts and
+// on the CAD-like fans (subdivision 2-3x slower up to 10 sites, equal at 11-12, 1.5-20x
+// faster from 13 on).
+constexpr int kMaxEnumeratedSites = 12;
+
+// The candidate passes of the default solver; *n_cells reports the subdivision's work.
+bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerances& tol, CandidatePool* pool,
+                    int* n_cells) {
+  detail::SiteSubdivision subdivision(sites, pool);
+  // The cap antipode maximises the link-vertex bound g >= D; above 90 degrees the region
+  // g >= threshold, which holds every candidate that can still become a maximiser, is
+  // convex around it and often tiny (link_vertex_lens.h).
+  Tolerances cap_tol = tol;
+  cap_tol.min_visibility = kLensCapMargin;
+  MostVisibleResult cap;
+  const bool capped =
+      wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap) == WolfeOutcome::kCertified && cap.feasible;
+  double radius = -1.0;
+  if (capped) {
+    // The antipode is a lower bound only: when it is the optimum its generators build it
+    // exactly, and Wolfe's rounding must not enter the tie-break.
+    double d;
+    bool fluid;
+    if (pool->evaluate(-cap.normal, -std::numeric_limits<double>::infinity(), &d, &fluid) && fluid &&
+        (!pool->constrained() || fan_visibility(g, -cap.normal) >= pool->v_min() - detail::kConstraintSlack))
+      pool->raise_floor(d);
+    const double thr = pool->threshold();
+    if (thr > 0.5 * M_PI + kLensThresholdMargin)
+      radius = detail::link_vertex_lens_radius(g.dirs, -cap.normal, thr, kMaxLensRadius);
+  }
+  const int n_sites = static_cast<int>(sites.points.size() + sites.arcs.size());
+  bool subdivided = true;
+  if (radius > 0.0) {
+    subdivision.unconstrained_candidates_near(-cap.normal, radius);
+  } else if (n_sites <= kMaxEnumeratedSites) {
+    detail::enumerate_screened(sites, pool);
+    subdivided = false;
+  } else {
+    subdivision.unconstrained_candidates();
+  }
+  // Plateaus first: their feasible part may reach the unconstrained optimum.
+  const bool non_unique = pool->unconstrained_maxima_distinct() || pool->constrained_maxima_distinct();
+  if (non_unique) {
+    if (subdivided) {
+      subdivision.plateau_peaks();
+    } else {
+      detail::enumerate_plateau_peaks(sites, pool);
+    }
+  }
+  if (pool->limited()) {
+    // The constraint circles are searched leaf by leaf: a small fan gets its leaves now.
+    if (!subdivided) subdivision.unconstrained_candidates();
+    subdivision.constraint_circles();
+  }
+  *n_cells = subdivision.stats().cells;
+  return non_unique;
+}
+
+// The passes of the enumeration, with the great-circle screen when `screen`.
+bool enumeration_passes(const FanSites& sites, bool screen, CandidatePool* pool) {
+  detail::enumerate_unconstrained(sites, screen, pool);
+  const bool non_unique = pool->unconstrained_maxima_distinct() || pool->constrained_maxima_distinct();
+  if (non_unique) detail::enumerate_plateau_peaks(sites, pool);
+  if (pool->limited()) detail::enumerate_constraint_circles(sites, pool);
+  return non_unique;
+}
+
+// Sites within this of the optimum's D (radians) count as its generators for the next
+// front: genuine generators tie to rounding (~1e-15); near-ties up to 1e-10 only add
+// rebuilt candidates.
+constexpr double kGeneratorSlack = 1e-10;
+
+// Faces whose visibility at a constrained optimum is within this of V_min hold it.
+constexpr double kConstraintFaceSlack = 1e-10;
+
+// The lower bound the previous generators give on this fan, or -infinity: the best D of
+// the fluid, feasible candidates rebuilt from them. *rebuilt receives its direction.
+double rebuilt_bound(const FanGeometry& g, const FanSites& sites, const MostNormalWarmStart& warm,
+                     const CandidatePool& pool, Vec3* rebuilt) {
+  double best = -std::numeric_limits<double>::infinity();
+  int points[3], arcs[3], faces[2];
+  int np = 0, na = 0, nf = 0;
+  const int k = g.n_faces();
+  for (int t = 0; t < warm.n_points; ++t) {
+    const int j = warm.points[t];
+    if (j < 0 || j >= k || sites.point_of_vertex[j] < 0) return best;
+    points[np++] = sites.point_of_vertex[j];
+  }
+  for (int t = 0; t < warm.n_arcs; ++t) {
+    const int i = warm.arcs[t];
+    if (i < 0 || i >= k) return best;
+    const int m = sites.arc_of_face[i];
+    bool repeated = false;
+    for (int q = 0; q < na; ++q) repeated |= arcs[q] == m;
+    if (!repeated) arcs[na++] = m;
+  }
+  for (int t = 0; t < warm.n_faces; ++t) {
+    if (warm.faces[t] < 0 || warm.faces[t] >= k) return best;
+    faces[nf++] = warm.faces[t];
+  }
+  auto offer = [&](const Vec3& x) {
+    const double len = norm(x);
+    if (!(len > 0.0) || !std::isfinite(len)) return;
+    const Vec3 n = x / len;
+    double d;
+    bool fluid;
+    if (!pool.evaluate(n, -std::numeric_limits<double>::infinity(), &d, &fluid) || !fluid || !(d > best)) return;
+    if (pool.constrained() && fan_visibility(g, n) < pool.v_min() - detail::kConstraintSlack) return;
+    best = d;
+    *rebuilt = n;
+  };
+  // The generators' own candidates: those of the whole set, or of each of its triples
+  // when ties give more than three (the smaller subsets built the previous optimum only
+  // if it had fewer generators).
+  const int size = std::min(3, np + na);
+  for (int mask = 1; mask < (1 << (np + na)); ++mask) {
+    int sp[3], sa[3], cp = 0, ca = 0;
+    if (__builtin_popcount(static_cast<unsigned>(mask)) != size) continue;
+    for (int b = 0; b < np + na; ++b)
+      if (mask & (1 << b)) {
+        if (b < np) {
+          sp[cp++] = points[b];
+        } else {
+          sa[ca++] = arcs[b - np];
+        }
+      }
+    const detail::SiteSubset sub{sp, cp, sa, ca};
+    if (cp + ca <= 2) {
+      detail::pair_candidates(sites, sub, detail::NoScreen{}, offer);
+    } else {
+      detail::triple_candidates(sites, sub, detail::NoScreen{}, offer);
+    }
+    if (nf > 0) detail::constraint_candidates(g, sites, sub, faces, nf, pool.v_min(), offer);
+  }
+  return best;
+}
+
+// The generators of the solution r for the next front (MostNormalWarmStart).
+MostNormalWarmStart generators_of(const FanGeometry& g, const FanSites& sites, const MostNormalResult& r,
+                                  double v_min) {
+  MostNormalWarmStart w;
+  if (r.status != NormalStatus::kOk && r.status != NormalStatus::kNonUnique &&
+      r.status != NormalStatus::kVisibilityConstrained)
+    return w;
+  const Vec3& n = r.normal;
+  const double reach = r.normality + kGeneratorSlack;
+  thread_local std::vector<std::pair<double, int>> near_points, near_arcs;
+  near_points.clear();
+  near_arcs.clear();
+  for (const detail::PointSite& p : sites.points) {
+    const double d = angle_between(n, p.w);
+    if (d <= reach) near_points.push_back({d, p.vertex});
+  }
+  for (const detail::ArcSite& a : sites.arcs) {
+    // Only an arc whose foot is inside generates: there its distance is to its circle.
+    if (dot(n, cross(a.g, a.u)) < 0.0 || dot(n, cross(a.v, a.g)) < 0.0) continue;
+    const double nf = dot(n, a.g);
+    const double d = std::atan2(std::fabs(nf), norm(n - nf * a.g));
+    if (d <= reach) near_arcs.push_back({d, a.first_face});
+  }
+  // The three nearest of each kind, nearest first.
+  std::sort(near_points.begin(), near_points.end());
+  std::sort(near_arcs.begin(), near_arcs.end());
+  w.n_points = static_cast<int>(std::min<std::size_t>(3, near_points.size()));
+  w.n_arcs = static_cast<int>(std::min<std::size_t>(3, near_arcs.size()));
+  for (int t = 0; t < w.n_points; ++t) w.points[t] = near_points[t].second;
+  for (int t = 0; t < w.n_arcs; ++t) w.arcs[t] = near_arcs[t].second;
+  if (r.status == NormalStatus::kVisibilityConstrained)
+    for (int i = 0; i < g.n_faces() && w.n_faces < 2; ++i)
+      if (dot(n, g.face_normals[i]) <= v_min + kConstraintFaceSlack) w.faces[w.n_faces++] = i;
+  w.valid = w.n_points + w.n_arcs > 0;
+  return w;
+}
+
+MostNormalResult solve(const FanGeometry& g, const Tolerances& tol, bool constrain_visibility, Strategy strategy,
+                       MostNormalWarmStart* warm = nullptr, bool* hit = nullptr,
+                       std::vector<detail::Maximizer>* maximizers = nullptr) {
+  if (hit) *hit = false;
+  const MostNormalWarmStart previous = warm ? *warm : MostNormalWarmStart{};
+  if (warm) *warm = MostNormalWarmStart{};
   const int k = g.n_faces();
   const MostVisibleResult mv = most_visible_normal(g.face_normals.data(), k, tol);
-  if (!mv.feasible) {
-    MostNormalResult r = fallback(g, mv.normal, mv.visibility, NormalStatus::kNoVisibleDirection);
-    return r;
-  }
+  if (!mv.feasible) return fallback(g, mv.normal, mv.visibility, NormalStatus::kNoVisibleDirection);
   if (!simple_link_around(g, mv.normal)) {
     const Vec3 n = weighted_average_normal(g, NormalMethod::kAngle);
     return fallback(g, n, fan_visibility(g, n), NormalStatus::kDegenerateFan);
@@ -123,26 +319,71 @@ MostNormalResult solve(const FanGeometry& g, const Tolerances& tol, bool constra
   thread_local FanSites sites;
   detail::build_fan_sites(g, tol, &sites);
   pool.consider(mv.normal);
-  const bool shortcuts = strategy != Strategy::kEnumeration;
-  if (!sites.points.empty() && shortcuts) {
-    MostNormalResult r;
-    if (cap_bound_shortcut(g, sites, tol, &pool, &r)) return r;
+  Vec3 rebuilt{0.0, 0.0, 0.0};
+  double rebuilt_d = -std::numeric_limits<double>::infinity();
+  if (previous.valid && !sites.points.empty()) {
+    rebuilt_d = rebuilt_bound(g, sites, previous, pool, &rebuilt);
+    pool.raise_floor(rebuilt_d);
   }
-  if (!sites.points.empty()) detail::enumerate_unconstrained(sites, shortcuts, &pool);
-  // Plateaus first: their feasible part may reach the unconstrained optimum.
-  bool non_unique = pool.unconstrained_maxima_distinct() || pool.constrained_maxima_distinct();
-  if (non_unique) detail::enumerate_plateau_peaks(sites, &pool);
-  if (pool.limited()) detail::enumerate_constraint_circles(sites, &pool);
+  bool non_unique = false;
+  int n_cells = 0;
+  // Without reflex vertices MN = MV (docs/normals.md, Part 4, "Sites").
+  if (!sites.points.empty()) {
+    if (strategy == Strategy::kSubdivision) {
+      non_unique = default_passes(g, sites, tol, &pool, &n_cells);
+    } else {
+      if (strategy == Strategy::kPrunedEnumeration) {
+        MostNormalResult r;
+        if (cap_bound_shortcut(g, sites, tol, &pool, &r)) return r;
+      }
+      non_unique = enumeration_passes(sites, strategy == Strategy::kPrunedEnumeration, &pool);
+    }
+  }
   non_unique = non_unique || pool.constrained_maxima_distinct();
-  if (!pool.has_maximizer()) return fallback(g, mv.normal, mv.visibility, NormalStatus::kDegenerateFan);
-  return pool.pick(non_unique);
+  if (!pool.has_maximizer() || pool.best_constrained() < pool.floor() - tol.normality_tie) {
+    // Nothing reached the bound the rebuilt candidate set: rounding at a degenerate
+    // optimum. Solve without it.
+    if (previous.valid) return solve(g, tol, constrain_visibility, strategy, warm, nullptr);
+    return fallback(g, mv.normal, mv.visibility, NormalStatus::kDegenerateFan);
+  }
+  MostNormalResult r = pool.pick(non_unique);
+  r.n_cells = n_cells;
+  if (maximizers) *maximizers = pool.maximizers();
+  if (hit)
+    *hit = rebuilt_d > -std::numeric_limits<double>::infinity() &&
+           angle_between(r.normal, rebuilt) <= detail::kDistinctMaximizers &&
+           std::fabs(r.normality - rebuilt_d) <= tol.normality_tie;
+  if (warm && !sites.points.empty()) *warm = generators_of(g, sites, r, pool.v_min());
+  return r;
 }
 
 }  // namespace
 
 MostNormalResult most_normal_normal(const FanGeometry& g, const Tolerances& tol, bool constrain_visibility) {
+  return solve(g, tol, constrain_visibility, Strategy::kSubdivision);
+}
+
+MostNormalResult most_normal_normal(const FanGeometry& g, MostNormalWarmStart* warm, bool* hit, const Tolerances& tol,
+                                    bool constrain_visibility) {
+  return solve(g, tol, constrain_visibility, Strategy::kSubdivision, warm, hit);
+}
+
+MostNormalResult most_normal_by_pruned_enumeration(const FanGeometry& g, const Tolerances& tol,
+                                                   bool constrain_visibility) {
   return solve(g, tol, constrain_visibility, Strategy::kPrunedEnumeration);
 }
+
+namespace detail {
+
+std::vector<Maximizer> most_normal_maximizers(const FanGeometry& g, const Tolerances& tol, bool constrain_visibility,
+                                              bool by_default) {
+  std::vector<Maximizer> out;
+  solve(g, tol, constrain_visibility, by_default ? Strategy::kSubdivision : Strategy::kEnumeration, nullptr, nullptr,
+        &out);
+  return out;
+}
+
+}  // namespace detail
 
 MostNormalResult most_normal_by_enumeration(const FanGeometry& g, const Tolerances& tol, bool constrain_visibility) {
   return solve(g, tol, constrain_visibility, Strategy::kEnumeration);

@@ -82,14 +82,42 @@ bool circle_screened_off(const CandidatePool& pool, const Vec3& h) {
   return any_arc;
 }
 
+// The great-circle screen of the enumeration (circle_screened_off).
+struct CircleScreen : NoScreen {
+  const CandidatePool* pool;
+  bool on;
+  bool circle(const Vec3& h) const { return on && circle_screened_off(*pool, h); }
+};
+
+// Both the great-circle and the generator screens.
+struct FullScreen {
+  const CandidatePool* pool;
+  ArcReachScreen reach;
+  bool circle(const Vec3& h) const { return circle_screened_off(*pool, h); }
+  bool arc(const Vec3& h, const Vec3& g) const { return reach.arc(h, g); }
+  bool arc_pair(const Vec3& a, const Vec3& b) const { return reach.arc_pair(a, b); }
+  bool point_ok(const Vec3& x, const Vec3& w) const { return reach.point_ok(x, w); }
+  bool arc_ok(const Vec3& x, const Vec3& g) const { return reach.arc_ok(x, g); }
+};
+
 }  // namespace
 
 void enumerate_unconstrained(const FanSites& s, bool screen, CandidatePool* pool) {
   const Subsets sub(s);
   auto emit = [pool](const Vec3& n) { pool->consider(n); };
-  single_and_pair_candidates(s, sub.all, emit);
-  triple_candidates(
-      s, sub.all, [&](const Vec3& h) { return screen && circle_screened_off(*pool, h); }, emit);
+  CircleScreen circles;
+  circles.pool = pool;
+  circles.on = screen;
+  single_and_pair_candidates(s, sub.all, NoScreen{}, emit);
+  triple_candidates(s, sub.all, circles, emit);
+}
+
+void enumerate_screened(const FanSites& s, CandidatePool* pool) {
+  const Subsets sub(s);
+  auto emit = [pool](const Vec3& n) { pool->consider(n); };
+  const FullScreen screen{pool, ArcReachScreen(*pool)};
+  single_and_pair_candidates(s, sub.all, screen, emit);
+  triple_candidates(s, sub.all, screen, emit);
 }
 
 void enumerate_constraint_circles(const FanSites& s, CandidatePool* pool) {

@@ -5,6 +5,8 @@
 // Internal to blayer_normals.
 #pragma once
 
+#include <vector>
+
 #include "candidate_pool.h"
 #include "fan_sites.h"
 
@@ -16,12 +18,24 @@ namespace detail {
 // (they would all be rejected; see circle_screened_off in the .cpp).
 void enumerate_unconstrained(const FanSites& s, bool screen, CandidatePool* pool);
 
+// The same with, in addition, the arc-reach screen (ArcReachScreen in candidate_pool.h):
+// candidates whose arc generators would lie nearer than the running threshold are not
+// built. Only candidates that are not critical points of D are lost (their arc is not
+// nearest), so every maximiser that is a critical point is still found.
+void enumerate_screened(const FanSites& s, CandidatePool* pool);
+
 // Every candidate on the constraint circles n.f_i = V_min (the pool is put in its
 // constrained pass first).
 void enumerate_constraint_circles(const FanSites& s, CandidatePool* pool);
 
 // The visibility peaks along the plateau circles of every concentric pair of sites.
 void enumerate_plateau_peaks(const FanSites& s, CandidatePool* pool);
+
+// Diagnostics for tests and benches: the maximisers (directions within the tie of the
+// optimum, with their D and V) that most_normal_by_enumeration (or, with `by_default`,
+// most_normal_normal) chooses its answer from; empty for the fallback statuses.
+std::vector<Maximizer> most_normal_maximizers(const FanGeometry& g, const Tolerances& tol, bool constrain_visibility,
+                                              bool by_default);
 
 }  // namespace detail
 }  // namespace blayer

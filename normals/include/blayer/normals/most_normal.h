@@ -35,6 +35,8 @@
 // the others).
 #pragma once
 
+#include <array>
+
 #include "blayer/normals/fan_geometry.h"
 #include "blayer/normals/point_normals.h"
 
@@ -46,14 +48,60 @@ struct MostNormalResult {
   double visibility = 0.0;  // V(normal)
   NormalStatus status = NormalStatus::kOk;
   int n_candidates = 0;     // candidates evaluated (diagnostics and benchmarks)
+  int n_cells = 0;          // cells of the subdivision visited (diagnostics and benchmarks)
 };
 
 MostNormalResult most_normal_normal(const FanGeometry& g, const Tolerances& tol = default_tolerances(),
                                     bool constrain_visibility = true);
 
+// A most-normal solution carried from one front to the next: the sites nearest to the
+// normal, which generated it, named by the fan's own indices so that they survive the
+// motion of the points (plain data, one per vertex; the fan's ring must keep its order).
+//   points  link-vertex indices j (ring positions) of reflex vertices,
+//   arcs    fan-arc indices i (arc i runs from ring j = i to i + 1) of arcs whose interior
+//           is nearest; a merged arc is named by any fan arc in it;
+//   faces   fan-arc (face) indices whose constraint circle n.f = V*/2 holds a visibility-
+//           constrained optimum.
+// valid is false before the first solve, after a fallback status, and when the fan has
+// no reflex vertex (MN = MV, nothing to carry).
+struct MostNormalWarmStart {
+  std::array<int, 3> points{{-1, -1, -1}};
+  std::array<int, 3> arcs{{-1, -1, -1}};
+  std::array<int, 2> faces{{-1, -1}};
+  int n_points = 0;
+  int n_arcs = 0;
+  int n_faces = 0;
+  bool valid = false;
+};
+
+// The same optimum as most_normal_normal (bit for bit the same rules; the candidate set
+// only gains the rebuilt one), warm-started. Contract:
+//   in:  *warm from the previous front at this vertex (or default: no warm start);
+//   out: *warm describes this solution, ready for the next front;
+//        *hit (optional) is true when the certificate held: the candidate rebuilt from
+//        the previous generators on this fan is the answer (within kDistinctMaximizers
+//        and the tie tolerance).
+// Certificate: the best candidate rebuilt from the previous generators (every 1-, 2- and
+// 3-site candidate of them, and of their constraint faces) is evaluated exactly; its D,
+// reached by a fluid, feasible direction, is a lower bound of the optimum, and becomes
+// the threshold of every screen, cell and evaluation from the start. The passes then
+// prove that nothing beats it by more than the tie tolerance (hit), or find what does;
+// either way the answer is the one of the cold solve: the bound prunes only candidates
+// that could not be maximisers, and the rebuilt candidate itself enters neither the
+// maximisers nor the tie-break. (If the passes ever found nothing up to the bound, the
+// vertex is solved again cold.)
+MostNormalResult most_normal_normal(const FanGeometry& g, MostNormalWarmStart* warm, bool* hit = nullptr,
+                                    const Tolerances& tol = default_tolerances(), bool constrain_visibility = true);
+
 // The same optimum by the candidate enumeration of step 4 alone, without the shortcut
 // of step 3 (reference for tests of the shortcut; same answer up to normality_tie).
 MostNormalResult most_normal_by_enumeration(const FanGeometry& g, const Tolerances& tol = default_tolerances(),
                                             bool constrain_visibility = true);
+
+// The enumeration with the shortcut of step 3 and its great-circle screen (the previous
+// default), kept as the speed baseline of the benchmarks.
+MostNormalResult most_normal_by_pruned_enumeration(const FanGeometry& g,
+                                                   const Tolerances& tol = default_tolerances(),
+                                                   bool constrain_visibility = true);
 
 }  // namespace blayer
