@@ -63,11 +63,24 @@ class CandidatePool {
   // constraint).
   double threshold() const { return std::max(best_c_, floor_) - tol_.normality_tie; }
   double unconstrained_threshold() const { return std::max(best_u_, floor_) - tol_.normality_tie; }
-  // Declares that some fluid, feasible direction reaches D = d (a warm start's rebuilt
-  // candidate): the optimum does too, so candidates more than the tie below d are
-  // dropped as they come, without d entering the maximisers or the tie-break.
-  void raise_floor(double d) { floor_ = std::max(floor_, d); }
+  // Declares that the fluid, feasible direction n reaches D = d (the cap antipode, a warm
+  // start's rebuilt candidate): the optimum does too, so candidates more than the tie
+  // below d are dropped as they come, without n entering the maximisers or the
+  // tie-break.
+  void raise_floor(const Vec3& n, double d) {
+    if (d > floor_) {
+      floor_ = d;
+      floor_direction_ = n;
+    }
+  }
   double floor() const { return floor_; }
+  // When no candidate reached the floor (the candidate formulas missed an optimum that
+  // rounding or a degenerate configuration hides), the direction that set it is the
+  // best point known: it becomes a candidate, evaluated like any other.
+  void settle_floor() {
+    if (floor_ > -std::numeric_limits<double>::infinity() && best_c_ < floor_ - tol_.normality_tie)
+      consider(floor_direction_);
+  }
   const Tolerances& tolerances() const { return tol_; }
   bool constrained() const { return constrained_; }
   double v_min() const { return v_min_; }
@@ -100,6 +113,7 @@ class CandidatePool {
   double best_c_ = -std::numeric_limits<double>::infinity();
   double best_u_ = -std::numeric_limits<double>::infinity();
   double floor_ = -std::numeric_limits<double>::infinity();
+  Vec3 floor_direction_{0.0, 0.0, 0.0};
   std::vector<Maximizer> maxima_;    // D >= best_c_ - tie among V >= V_min
   std::vector<Maximizer> maxima_u_;  // D >= best_u_ - tie, any V
   int n_candidates_ = 0;

@@ -153,7 +153,7 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
     bool fluid;
     if (pool->evaluate(-cap.normal, -std::numeric_limits<double>::infinity(), &d, &fluid) && fluid &&
         (!pool->constrained() || fan_visibility(g, -cap.normal) >= pool->v_min() - detail::kConstraintSlack))
-      pool->raise_floor(d);
+      pool->raise_floor(-cap.normal, d);
     const double thr = pool->threshold();
     if (thr > 0.5 * M_PI + kLensThresholdMargin)
       radius = detail::link_vertex_lens_radius(g.dirs, -cap.normal, thr, kMaxLensRadius);
@@ -323,7 +323,7 @@ MostNormalResult solve(const FanGeometry& g, const Tolerances& tol, bool constra
   double rebuilt_d = -std::numeric_limits<double>::infinity();
   if (previous.valid && !sites.points.empty()) {
     rebuilt_d = rebuilt_bound(g, sites, previous, pool, &rebuilt);
-    pool.raise_floor(rebuilt_d);
+    pool.raise_floor(rebuilt, rebuilt_d);
   }
   bool non_unique = false;
   int n_cells = 0;
@@ -339,13 +339,15 @@ MostNormalResult solve(const FanGeometry& g, const Tolerances& tol, bool constra
       non_unique = enumeration_passes(sites, strategy == Strategy::kPrunedEnumeration, &pool);
     }
   }
-  non_unique = non_unique || pool.constrained_maxima_distinct();
-  if (!pool.has_maximizer() || pool.best_constrained() < pool.floor() - tol.normality_tie) {
-    // Nothing reached the bound the rebuilt candidate set: rounding at a degenerate
-    // optimum. Solve without it.
-    if (previous.valid) return solve(g, tol, constrain_visibility, strategy, warm, nullptr);
-    return fallback(g, mv.normal, mv.visibility, NormalStatus::kDegenerateFan);
+  if (pool.best_constrained() < pool.floor() - tol.normality_tie) {
+    // No candidate reached the floor: the formulas missed an optimum at a degenerate
+    // configuration. A warm start then yields to the cold solve; the cap antipode, the
+    // best point known, becomes a candidate.
+    if (previous.valid) return solve(g, tol, constrain_visibility, strategy, warm, nullptr, maximizers);
+    pool.settle_floor();
   }
+  non_unique = non_unique || pool.constrained_maxima_distinct();
+  if (!pool.has_maximizer()) return fallback(g, mv.normal, mv.visibility, NormalStatus::kDegenerateFan);
   MostNormalResult r = pool.pick(non_unique);
   r.n_cells = n_cells;
   if (maximizers) *maximizers = pool.maximizers();
