@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include "agreement.h"
+#include "agreement_test_support.h"
 #include "blayer/normals/most_normal.h"
 #include "cad_fans.h"
 #include "random_fans.h"
