@@ -18,7 +18,8 @@ namespace detail {
 
 // Smallest |x| of a candidate x = h x (w x f) discarded with its circle when the circle
 // is screened off: its direction, after normalisation, is within 1e-16 / 1e-3 = 1e-13 of
-// the circle, inside the level at which screens decide (kCircleLevel, most_normal.cpp).
+// the circle, inside the level at which screens decide (kCircleLevel,
+// most_normal_enumeration.cpp).
 constexpr double kCircleCandidateNorm = 1e-3;
 
 // What a caller may rule out before or after candidates are built (each "rule out"

@@ -2,18 +2,20 @@
 // generalized Voronoi diagram of the fan's sites (reflex link vertices as points, merged
 // link arcs as great-circle arcs): instead of every 1-, 2- and 3-site candidate of all
 // the sites (O(k^3)), only those of the few sites that can be nearest inside a small
-// cell, in the cells where D can still reach the running optimum.
+// cell, in the cells where D can still reach the running threshold.
 //
-// Cells are the squares of a cube map, refined as quadtrees; each cell is held in the cap
-// B(c, rho) around its centre c. D and V are 1-Lipschitz in the angle, so on the cell
+// Cells are the squares of gnomonic charts (the six cube faces, or one chart around a
+// given direction), refined as quadtrees; each cell is held in the cap B(c, rho) around
+// its centre c. D and V are 1-Lipschitz in the angle, so on the cell
 //   D <= D(c) + rho,   V <= V(c) + rho,
 // and a site s (distance d_s) can be the nearest one somewhere in the cell only if
 // d_s(c) <= D(c) + 2 rho; a face can give V only if c.f <= V(c) + 2 rho. A cell is
-// dropped when D(c) + rho is below the running threshold (or, wholly invisible, below the
-// unconstrained one), or when it lies off the fluid side (D(c) > rho, so the cap meets no
-// arc, and c is not fluid). Otherwise it inherits the parent's surviving sites and faces
-// and is split, until at most kLeafSites sites can be nearest in it (an arc counts only
-// where its interior can be nearest: the cap meets its foot-inside lune) or it is tiny.
+// dropped when D(c) + rho is below the threshold (or, wholly invisible, below the
+// unconstrained one), or when it lies off the fluid side (D(c) > rho, so the cap meets
+// no arc, and c is not fluid). Otherwise it inherits the parent's surviving sites and
+// faces and is split, until at most kLeafSites sites can be nearest in it, or they stop
+// changing, or the cell is tiny. An arc counts only where its interior can be nearest
+// (the cap meets its foot-inside lune) and can still reach the threshold.
 //
 // Exactness. Every local maximum of D (with or without the constraint V >= V_min) is a
 // candidate of the subset of the sites nearest to it (docs/normals.md, "Why exact"): a
@@ -21,16 +23,16 @@
 // s has d_s(c) <= d_s(x) + rho = D(x) + rho <= D(c) + 2 rho, so it survives in the leaf,
 // and the leaf's enumeration of its subsets builds x by the same formula as the full
 // enumeration. A dropped cell holds no fluid point with D above the threshold of its
-// kind, and thresholds only rise. Candidates outside their leaf are skipped: their own
-// leaf builds them. So every candidate of the full enumeration that can become a
-// maximiser is offered, except spurious ones (built from sites that are not nearest to
-// them), whose D is then the distance of another site: within the tie of the optimum
-// these lie within tie / slope of a genuine maximiser, or on a plateau whose ends and
-// visibility peaks are genuine candidates. The leaves are kept for the plateau and
-// constraint-circle passes, which therefore see only the faces and sites of each leaf.
+// kind, and thresholds only rise. Each subset is enumerated once, in the first leaf
+// that holds it, and its candidates are offered wherever they lie. So every candidate of
+// the full enumeration that is a critical point of D and can become a maximiser is
+// offered; only candidates built from sites that are not nearest to them may be missing,
+// and within the tie of the optimum those lie on ridges or near-plateaus whose genuine
+// maximisers are offered. The leaves are kept for the plateau and constraint-circle
+// passes, which therefore see only the faces and sites of each leaf.
 //
 // Cost: the cells near the superlevel set of the optimum, each O(sites of its parent),
-// plus O(kLeafSites^3) candidates per leaf, instead of O(k^3) candidates. Internal to
+// plus the candidates of the distinct subsets of the leaves' sites. Internal to
 // blayer_normals.
 #pragma once
 
