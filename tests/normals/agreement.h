@@ -97,19 +97,20 @@ inline bool genuine_maximizer(const FanGeometry& g, const Vec3& x) {
   // D gained along tangent t: by steps along the great circle through x and t (exactly on
   // a point-point or arc-arc bisector when t is its tangent) up to max_step.
   auto gains = [&](const Vec3& t, double max_step) {
-    for (double step = 1e-7; step <= max_step * 1.0001; step *= 10.0)
+    for (double step = 1e-7; step <= max_step * 1.0001; step *= (step < 1e-2 ? 10.0 : 3.0))
       for (double sign : {1.0, -1.0})
         if (fan_normality(g, normalized(std::cos(step) * x + sign * std::sin(step) * t)) > d + kGain) return true;
     return false;
   };
   if (sites.size() >= 2 && sites[1].d - sites[0].d <= kNearlyTied) {
     // Along the bisector of the two nearest: a great circle {n.(a - b) = 0} for two points
-    // or two arcs (walked far: near-plateaus rise by 1e-9 per radian), a cone otherwise.
+    // or two arcs (walked up to 0.03 rad: a near-plateau, two points antipodal to 1e-7,
+    // rises by ~1e-11 over that), a cone otherwise.
     const SiteView& a = sites[0];
     const SiteView& b = sites[1];
     const bool circle = a.point == b.point;
     const Vec3 t = circle ? normalized(cross(x, a.axis - b.axis)) : normalized(cross(x, a.gradient - b.gradient));
-    if (norm2(t) > 0.0) return !gains(t, circle ? 1e-3 : 1e-6);
+    if (norm2(t) > 0.0) return !gains(t, circle ? 3e-2 : 1e-6);
   }
   const Vec3 e1 = normalized(cross(x, std::fabs(x[0]) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
   const Vec3 e2 = cross(x, e1);
