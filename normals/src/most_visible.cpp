@@ -103,7 +103,11 @@ MostVisibleResult best_margin_direction(const Vec3* f, int k) {
     const double len = norm(c);
     if (!(len > 0.0)) return;
     for (const Vec3& n : {c / len, -c / len}) {
-      const double v = min_dot(f, k, n);
+      // Only a strictly larger margin replaces the best, so a candidate is abandoned as
+      // soon as one face reaches the best margin: the same answer, at a fraction of the
+      // O(k^4) cost (one face suffices for most of the k^3 candidates).
+      double v = std::numeric_limits<double>::infinity();
+      for (int j = 0; j < k && v > best.visibility; ++j) v = std::min(v, dot(f[j], n));
       if (v > best.visibility) {
         best.visibility = v;
         best.normal = n;
