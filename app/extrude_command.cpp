@@ -109,8 +109,10 @@ struct FilledRegion {
   std::vector<std::int64_t> fill_to_mesh;  // mesh point of every fill point
 };
 
-FilledRegion fill_beyond_layers(const ParamValues& params, Side side, ExtrusionResult& result) {
+FilledRegion fill_beyond_layers(const ParamValues& params, Side side, const std::optional<SymmetryPlane>& symmetry,
+                                ExtrusionResult& result) {
   FillOptions fo;
+  fo.symmetry = symmetry;
   fo.region = side == Side::kInward ? FillOptions::Region::kInside : FillOptions::Region::kOutside;
   fo.farfield_scale = params.get_real("farfield-scale");
   fo.growth = params.get_real("fill-growth");
@@ -213,7 +215,8 @@ int run_extrude_command(const ParamValues& params) {
   const PrepareOptions surface_opt = surface_options(params);
   const PreparedSurface prepared = load_surface(input, surface_opt);
   std::vector<std::string> notes = prepared.notes;
-  const ExtrusionParams ep = extrusion_params(params, prepared.surface, &notes);
+  ExtrusionParams ep = extrusion_params(params, prepared.surface, &notes);
+  ep.symmetry = prepared.symmetry;
   std::printf("blayer extrude: %s: %zu points, %zu triangles\n", input.c_str(), prepared.surface.points.size(),
               prepared.surface.triangles.size());
   for (const std::string& n : notes) std::printf("note: %s\n", n.c_str());
@@ -225,7 +228,7 @@ int run_extrude_command(const ParamValues& params) {
   const std::string thin = thickness_warning(result.report);
   if (!thin.empty()) std::printf("warning: %s\n", thin.c_str());
   std::optional<FilledRegion> filled;
-  if (params.get_bool("fill")) filled = fill_beyond_layers(params, surface_opt.side, result);
+  if (params.get_bool("fill")) filled = fill_beyond_layers(params, surface_opt.side, prepared.symmetry, result);
 
   const Stopwatch check_time;
   const MeshCheckReport check = decide_validity(result.mesh);
@@ -234,7 +237,7 @@ int run_extrude_command(const ParamValues& params) {
   std::optional<MarkedBoundary> boundary;
   if (filled) boundary = hybrid_boundary(result.mesh, prepared.surface, filled->fill, filled->fill_to_mesh);
   PatchSources patch_sources{&prepared.surface, boundary ? &*boundary : nullptr, &result.envelope,
-                             &result.envelope_point_ids};
+                             &result.envelope_point_ids, prepared.symmetry ? &*prepared.symmetry : nullptr};
   const std::vector<BoundaryPatch> patches = write_mesh_output(out.mesh_staged, result.mesh, patch_sources, out.vtk);
   if (!out.envelope.empty()) write_envelope(result, out.envelope_tmp, out.vtk);
   if (!out.boundary.empty()) write_boundary(*boundary, out.boundary_tmp, out.vtk);

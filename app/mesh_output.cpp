@@ -83,7 +83,7 @@ std::vector<BoundaryPatch> write_mesh_output(const StagedMesh& staged, const Vol
     write_vtu(mesh, staged.file_tmp, vtk_options);
     return {};
   }
-  const SolverMesh solver_mesh = make_solver_mesh(mesh, standard_patches(sources), "bl_side");
+  const SolverMesh solver_mesh = make_solver_mesh(mesh, standard_patches(sources), "bl_side", sources.symmetry);
   switch (staged.format) {
     case MeshFormat::kCgns: write_cgns(solver_mesh, staged.file_tmp, staged.target); break;
     case MeshFormat::kSu2: write_su2(solver_mesh, staged.file_tmp, staged.target); break;

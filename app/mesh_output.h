@@ -48,6 +48,7 @@ struct PatchSources {
   const MarkedBoundary* boundary = nullptr;
   const TriSurface* envelope = nullptr;
   const std::vector<std::int64_t>* envelope_point_ids = nullptr;
+  const SymmetryPlane* symmetry = nullptr;  // a half model's plane: its faces form "symmetry"
 };
 
 std::vector<PatchTriangles> standard_patches(const PatchSources& sources);

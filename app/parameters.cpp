@@ -101,6 +101,8 @@ const std::vector<ParamSpec>& parameter_table() {
       {"config", ParamType::kPath, "", "", "TOML case file with any of these keys; command-line options override it; relative paths in it are relative to the file", kAll},
       {"side", ParamType::kString, "outward", "", "side the layers grow on: outward (external flow) or inward (internal flow: pipes, arteries); closed surfaces oriented the other way are flipped", kAll, "outward|inward"},
       {"allow-open", ParamType::kBool, "false", "", "accept a surface with boundary edges (holes); layers grow on the side its triangles' normals point to", kAll},
+      {"symmetry", ParamType::kString, "auto", "", "half models: auto finds the symmetry plane of an open surface whose whole boundary lies in one plane (and says so); none treats every boundary as a hole", kAll, "auto|none"},
+      {"symmetry-plane", ParamType::kString, "", "", "the symmetry plane of a half model: x=C, y=C, z=C or \"a b c d\" (a x + b y + c z = d); its boundary must lie in it", kAll},
       {"method", ParamType::kString, "most-normal", "", "point normal method: most-normal (maximises the minimum angle to the incident triangles), most-visible (maximises min n.f), or a weighted average: angle, area, unit, inverse-area, max", kSurfaceCmds, "most-normal|most-visible|angle|area|unit|inverse-area|max"},
       {"layers", ParamType::kInt, default_of(ex.growth.layers), "", "number of prism layers per column before any local limiting", kExtrudeCmd | kCheckCmd},
       {"first-height", ParamType::kReal, "", "length", "height of the first (wall) layer; default: 2e-4 x the bounding-box diagonal unless two of total-thickness, last-height, growth-ratio are given", kExtrudeCmd | kCheckCmd},

@@ -14,6 +14,7 @@ render() { xvfb-run -a /usr/bin/python3 "$root/scripts/render_slice.py" "$@"; }
 "$blayer" extrude --config "$root/cases/001_onera_m6_16k/case.toml" -o "$out/m6.vtu" >/dev/null
 "$blayer" extrude --config "$root/cases/005_cylinder_on_plate/case.toml" -o "$out/cylinder.vtu" >/dev/null
 "$blayer" extrude --config "$root/cases/006_thin_slot/case.toml" -o "$out/slot.vtu" >/dev/null
+"$blayer" extrude --config "$root/cases/013_onera_m6_half/case.toml" --fill -o "$out/m6_half.vtu" >/dev/null
 
 render "$out/m6.vtu" "$root/docs/images/m6_trailing_edge.png" --origin 0.97 0.6 0 --normal 0 1 0 \
   --focus 0.96 0.6 0 --width 0.05 --title "ONERA M6, trailing edge at y = 0.6: 10 layers, coloured by layer"
@@ -21,4 +22,7 @@ render "$out/cylinder.vtu" "$root/docs/images/cylinder_plate_junction.png" --ori
   --focus 0.58 0 0.07 --width 0.22 --title "Cylinder on plate, concave junction (slice y = 0), coloured by layer"
 render "$out/slot.vtu" "$root/docs/images/thin_slot.png" --origin 1 0.5 0.5 --normal 0 -1 0 \
   --focus 1 0.5 0.36 --width 0.3 --title "Thin slot (0.1 wide, slice y = 0.5): fronts limited to under half the gap"
+render "$out/m6_half.vtu" "$root/docs/images/m6_half_root.png" --origin 0.4 0.0000001 0 --normal 0 1 0 \
+  --focus 0.75 0 0 --width 0.2 --up 0 0 1 \
+  --title "ONERA M6 half model: layers and fill on the symmetry plane y = 0 (trailing edge)"
 ls -la "$root/docs/images"

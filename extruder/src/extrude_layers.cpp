@@ -1,6 +1,7 @@
 #include "blayer/extruder/extrude_layers.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
@@ -67,10 +68,10 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
 
   // Setup: topology, wall directions, checker trees, column plan.
   Stopwatch phase;
-  const WallTopology topo = build_wall_topology(wall);
+  const WallTopology topo = build_wall_topology(wall, params.symmetry);
   const WallPlanes planes(wall, topo);
   StepDirections dirs = compute_step_directions(wall, topo, topo.used, params);
-  FrontChecker checker(wall, params);
+  FrontChecker checker(wall, topo, params);
   ColumnPlan plan = plan_column_heights(wall, topo, rep.growth, params, dirs, checker.wall_rays());
   ColumnState columns = ColumnState::on_wall(wall.points, topo.used);
   LayerAssembler assembler(wall, dirs);
@@ -134,6 +135,14 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
 
   phase.restart();
   summarise_extrusion(wall, topo, plan, columns, res.mesh, &rep);
+  if (topo.plane) {
+    for (int v = 0; v < topo.n_points(); ++v) rep.n_symmetry_columns += topo.on_plane[v];
+    const std::vector<int>& column_of = assembler.point_column();
+    for (std::size_t q = 0; q < res.mesh.points.size(); ++q)
+      if (topo.on_plane[column_of[q]])
+        rep.max_symmetry_distance =
+            std::max(rep.max_symmetry_distance, std::fabs(topo.plane->signed_distance(res.mesh.points[q])));
+  }
   rep.t_report = phase.seconds();
   rep.t_total = total.seconds();
   return res;

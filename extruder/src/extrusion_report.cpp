@@ -193,6 +193,9 @@ std::string format_extrusion_report(const ExtrusionReport& r) {
          f.top_over_T_planes.p5, f.top_over_T_planes.p50, f.top_over_T_distance.p5, f.top_over_T_distance.p50,
          percent(f.top_ge_90pct_planes).c_str(), percent(f.top_ge_90pct_distance).c_str());
   }
+  if (r.n_symmetry_columns > 0)
+    line(&s, "symmetry plane      %d columns on it, their points at most %.3g from it", r.n_symmetry_columns,
+         r.max_symmetry_distance);
   std::string per_layer;
   for (int n : r.columns_per_layer) per_layer += " " + std::to_string(n);
   line(&s, "columns per layer  %s", per_layer.c_str());
@@ -244,6 +247,7 @@ nlohmann::json extrusion_report_to_json(const ExtrusionReport& r) {
   if (r.has_fidelity) j["fidelity"] = layer_fidelity_to_json(r.fidelity);
   j["coverage"] = r.coverage;
   j["area_coverage"] = r.area_coverage;
+  j["symmetry"] = {{"columns", r.n_symmetry_columns}, {"max_distance", r.max_symmetry_distance}};
   j["columns"] = {{"complete", r.n_complete_columns},
                   {"stopped", counts_by_reason(r.stopped_columns)},
                   {"limited", counts_by_reason(r.limited_columns)},

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "blayer/core/edge_topology.h"
 #include "blayer/extruder/filtered_orient3d.h"
 #include "blayer/extruder/layer_cells.h"
 #include "blayer/quality/cell_validity.h"
@@ -78,53 +79,47 @@ void unit_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
 
 }  // namespace
 
-FrontChecker::FrontChecker(const TriSurface& wall, const ExtrusionParams& params)
-    : FrontChecker(wall, params.check_collisions) {
+FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params)
+    : FrontChecker(wall, topo, params.check_collisions) {
   limits_ = params.solver_limits;
   if (!limits_.any()) return;
-  build_edge_neighbours();
+  build_edge_neighbours(wall);
   centre_.resize(nf_);
   below_centre_.resize(nf_);
   cap_bad_.assign(nf_, 0);
-  side_bad_.assign(3 * static_cast<std::size_t>(nf_), 0);
+  side_face_bad_.assign(3 * static_cast<std::size_t>(nf_), 0);
   side_geo_.resize(3 * static_cast<std::size_t>(nf_));
 }
 
-// Pairs the triangles across each wall edge: the two uses of an edge, in opposite
-// directions, are neighbours; an edge used once is open, one used otherwise (three
-// times, or twice in the same direction) is non-manifold.
-void FrontChecker::build_edge_neighbours() {
+// The triangle across each wall edge (core/edge_topology.h): the other use of a
+// manifold edge; -1 on an open edge, -2 on a non-manifold or inconsistently oriented one.
+void FrontChecker::build_edge_neighbours(const TriSurface& wall) {
   const std::vector<Triangle>& tris = *triangles_;
-  struct Use {
-    std::int64_t key;
-    int slot;
-  };
-  std::vector<Use> uses(3 * static_cast<std::size_t>(nf_));
-  for (int f = 0; f < nf_; ++f)
+  auto slot_of = [&](int f, int lo, int hi) {
     for (int e = 0; e < 3; ++e) {
-      const std::int64_t a = tris[f][e], b = tris[f][(e + 1) % 3];
-      uses[3 * f + e] = {std::min(a, b) * nv_ + std::max(a, b), 3 * f + e};
+      const int a = tris[f][e], b = tris[f][(e + 1) % 3];
+      if (std::min(a, b) == lo && std::max(a, b) == hi) return 3 * f + e;
     }
-  std::sort(uses.begin(), uses.end(),
-            [](const Use& x, const Use& y) { return x.key < y.key || (x.key == y.key && x.slot < y.slot); });
-  edge_neighbour_.assign(uses.size(), -1);
-  side_slot_.resize(uses.size());
-  for (std::size_t i = 0; i < uses.size(); ++i) side_slot_[i] = static_cast<int>(i);
-  for (std::size_t i = 0, j; i < uses.size(); i = j) {
-    for (j = i + 1; j < uses.size() && uses[j].key == uses[i].key;) ++j;
-    if (j - i == 1) continue;
-    const int s0 = uses[i].slot, s1 = uses[i + 1].slot;
-    const bool opposite = j - i == 2 && tris[s0 / 3][s0 % 3] == tris[s1 / 3][(s1 % 3 + 1) % 3];
-    for (std::size_t u = i; u < j; ++u) edge_neighbour_[uses[u].slot] = -2;
-    if (!opposite) continue;
-    edge_neighbour_[s0] = s1 / 3;
-    edge_neighbour_[s1] = s0 / 3;
-    side_slot_[s0] = side_slot_[s1] = std::min(s0, s1);  // the smaller triangle's
+    return -1;
+  };
+  edge_neighbour_.assign(3 * static_cast<std::size_t>(nf_), -2);
+  side_slot_.resize(edge_neighbour_.size());
+  for (std::size_t i = 0; i < side_slot_.size(); ++i) side_slot_[i] = static_cast<int>(i);
+  for (const SurfaceEdge& edge : build_edge_topology(wall).edges) {
+    const int f = edge.triangle[0], g = edge.triangle[1];
+    if (edge.kind == EdgeKind::kBoundary) edge_neighbour_[slot_of(f, edge.lo, edge.hi)] = -1;
+    if (edge.kind != EdgeKind::kManifold) continue;
+    const int sf = slot_of(f, edge.lo, edge.hi), sg = slot_of(g, edge.lo, edge.hi);
+    edge_neighbour_[sf] = g;
+    edge_neighbour_[sg] = f;
+    side_slot_[sf] = side_slot_[sg] = std::min(sf, sg);  // the smaller triangle's
   }
 }
 
-FrontChecker::FrontChecker(const TriSurface& wall, bool check_collisions)
+FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions)
     : triangles_(&wall.triangles),
+      plane_(topo.plane),
+      on_plane_(topo.on_plane),
       wall_points_(&wall.points),
       nv_(static_cast<int>(wall.points.size())),
       nf_(static_cast<int>(wall.triangles.size())),
@@ -165,6 +160,10 @@ ProximityRays FrontChecker::wall_rays() const {
   r.wall_points = wall_points_;
   r.wall_tree = &wall_tree_;
   r.wall_normal = &wall_normal_;
+  if (plane_) {
+    r.plane = &*plane_;
+    r.on_plane = &on_plane_;
+  }
   return r;
 }
 
@@ -299,19 +298,20 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
     for (int e = 0; e < 3; ++e) {
       const int slot = 3 * f + e, g = nb[e];
       if (side_slot_[slot] != slot || !(tri_moved_[f] || (g >= 0 && tri_moved_[g]))) continue;
-      side_bad_[slot] = 0;
+      side_face_bad_[slot] = 0;
       int i = 2;
       while (i < c.n && c.edge[i] != e) ++i;
       if (i >= c.n || invalid_[f] || (g >= 0 && invalid_[g])) continue;
       const FaceGeometry& geo = side_geo_[slot];
       const FaceSide side = g == -1 ? FaceSide::kBoundary : g == -2 ? FaceSide::kUnknown : FaceSide::kInternal;
       const Vec3& other = g >= 0 ? centre_[g] : centre_[f];
-      side_bad_[slot] = judge_face(c.face[i], geo, centre_[f], side, other, limits_) != AcceptanceFailure::kNone;
+      side_face_bad_[slot] = judge_face(c.face[i], geo, centre_[f], side, other, limits_) != AcceptanceFailure::kNone;
     }
   });
   tbb::parallel_for(0, nf_, [&](int f) {
     const int* slot = &side_slot_[3 * f];
-    bad_cell_[f] = invalid_[f] || cap_bad_[f] || side_bad_[slot[0]] || side_bad_[slot[1]] || side_bad_[slot[2]];
+    bad_cell_[f] = invalid_[f] || cap_bad_[f] || side_face_bad_[slot[0]] || side_face_bad_[slot[1]] ||
+                   side_face_bad_[slot[2]];
   });
 }
 
@@ -376,6 +376,7 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
   });
   check_cells(top, next);
   if (check_collisions_) check_intersections(next);
+  if (plane_) check_symmetry_side(next);
 
   out->bad.assign(nv_, 0);
   out->reason.assign(nv_, StopReason::kNone);
@@ -389,8 +390,9 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
           out->reason[v] = StopReason::kQuality;
         }
   for (int f = 0; f < nf_; ++f) {
-    out->bad_triangle[f] = bad_cell_[f] || collided_[f];
-    if (collided_[f])
+    const bool crossing = collided_[f] || (!side_bad_.empty() && side_bad_[f]);
+    out->bad_triangle[f] = bad_cell_[f] || crossing;
+    if (crossing)
       for (int v : tris[f])
         if (grows_[v]) {
           out->bad[v] = 1;
@@ -398,6 +400,18 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
         }
   }
   out->any_bad = std::find(out->bad.begin(), out->bad.end(), 1) != out->bad.end();
+}
+
+void FrontChecker::check_symmetry_side(const std::vector<Vec3>& next) {
+  // A triangle whose points all lie on the model's side (or in the plane, for the
+  // columns on it) lies there too: the half space is convex.
+  const std::vector<Triangle>& tris = *triangles_;
+  side_bad_.assign(nf_, 0);
+  tbb::parallel_for(0, nf_, [&](int f) {
+    if (!tri_grows_[f]) return;
+    for (int v : tris[f])
+      if (grows_[v] && !on_plane_[v] && !(plane_->signed_distance(next[v]) > 0.0)) side_bad_[f] = 1;
+  });
 }
 
 void FrontChecker::release() {
@@ -418,7 +432,7 @@ void FrontChecker::release() {
   release(centre_);
   release(below_centre_);
   release(previous_bottom_);
-  release(side_bad_);
+  release(side_face_bad_);
   release(side_geo_);
 }
 

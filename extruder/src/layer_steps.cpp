@@ -115,8 +115,14 @@ std::vector<char> settle_layer(int k, const std::vector<Triangle>& triangles, co
   FrontVerdict verdict;
   for (int attempt = 0;; ++attempt) {
     parallel_vertices(nv, [&](int v) {
-      (*next)[v] = grows[v] ? columns->top[v] + step_of(k, v, *plan, planes, columns->top[v], d->n[v], p) * d->n[v]
-                            : columns->top[v];
+      if (!grows[v]) {
+        (*next)[v] = columns->top[v];
+        return;
+      }
+      const Vec3 q = columns->top[v] + step_of(k, v, *plan, planes, columns->top[v], d->n[v], p) * d->n[v];
+      // A column on the symmetry plane stays exactly in it (its direction is in the
+      // plane; the projection removes the rounding).
+      (*next)[v] = topo.on_plane[v] ? topo.plane->project(q) : q;
     });
     checker->check(attempt, columns->top, *next, grows, &verdict);
     if (!verdict.any_bad) break;

@@ -21,6 +21,14 @@ double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_
   };
   search(*wall_tree, *wall_points, *wall_normal);
   if (front_points) search(*front_tree, *front_points, *front_normal);
+  if (plane && !(*on_plane)[v]) {
+    // Seen from the model's side the plane faces the ray when dir points towards it.
+    const double towards = -dot(dir, plane->normal);
+    if (towards > 0.0) {
+      const double t = plane->signed_distance(o) / towards;
+      if (t >= 0.0 && t <= t_max) best = std::min(best, t);
+    }
+  }
   return best;
 }
 

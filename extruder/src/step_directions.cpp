@@ -10,6 +10,8 @@ namespace blayer {
 
 namespace {
 
+Vec3 keep_in_plane(const WallTopology& topo, int v, const Vec3& d);
+
 std::vector<Vec3> unit_face_normals(const TriSurface& s) {
   std::vector<Vec3> fn(s.triangles.size());
   tbb::parallel_for(0, static_cast<int>(s.triangles.size()),
@@ -26,12 +28,17 @@ void smoothing_pass(const WallTopology& topo, const std::vector<double>& raw_vis
   parallel_vertices(topo.n_points(), [&](int v) {
     if (!d->ok[v]) return;
     Vec3 avg = d->n[v];
-    for (const int* u = nbr.begin(v); u != nbr.end(v); ++u)
-      if (d->ok[*u]) avg += d->n[*u];
+    for (const int* u = nbr.begin(v); u != nbr.end(v); ++u) {
+      if (!d->ok[*u]) continue;
+      avg += d->n[*u];
+      // On the symmetry plane the mirrored model's neighbours count too: the sum is
+      // then the full model's, symmetric, in the plane.
+      if (topo.on_plane[v] && !topo.on_plane[*u]) avg += topo.plane->mirror_direction(d->n[*u]);
+    }
     avg = normalized(avg);
     if (!(norm2(avg) > 0.0)) return;
     for (double t : {1.0, 0.5, 0.25}) {
-      const Vec3 cand = normalized((1.0 - t) * d->n[v] + t * avg);
+      const Vec3 cand = keep_in_plane(topo, v, normalized((1.0 - t) * d->n[v] + t * avg));
       const double vis = visibility_of(*d, topo, v, cand);
       if (vis >= raw_visibility[v] && vis >= min_visibility) {
         next[v] = cand;
@@ -49,11 +56,28 @@ void smoothing_pass(const WallTopology& topo, const std::vector<double>& raw_vis
 VertexNormal front_normal(const TriSurface& front, const WallTopology& topo, int v, NormalMethod method) {
   const VertexFan& fan = topo.fans.fans[v];
   std::vector<Vec3> ring;
-  ring.reserve(fan.ring.size());
+  ring.reserve(2 * fan.ring.size());
   for (int r : fan.ring) ring.push_back(front.points[r]);
   FanGeometry g;
-  build_fan_geometry(front.points[v], ring, fan.closed, default_tolerances(), &g);
-  return compute_vertex_normal(g, method);
+  if (!topo.on_plane[v]) {
+    build_fan_geometry(front.points[v], ring, fan.closed, default_tolerances(), &g);
+    return compute_vertex_normal(g, method);
+  }
+  // A point on the symmetry plane: its fan is half of the symmetric fan the mirrored
+  // model would give; that fan's normal is symmetric, i.e. in the plane (rounding
+  // aside, removed by the projection). Ring r_0 .. r_m (r_0, r_m on the plane), then
+  // the mirror images of r_{m-1} .. r_1.
+  const SymmetryPlane& plane = *topo.plane;
+  for (int j = static_cast<int>(fan.ring.size()) - 2; j >= 1; --j) ring.push_back(plane.mirror(front.points[fan.ring[j]]));
+  build_fan_geometry(front.points[v], ring, true, default_tolerances(), &g);
+  VertexNormal n = compute_vertex_normal(g, method);
+  n.normal = normalized(plane.in_plane(n.normal));
+  return n;
+}
+
+// Keeps a column on the symmetry plane in it.
+Vec3 keep_in_plane(const WallTopology& topo, int v, const Vec3& d) {
+  return topo.on_plane[v] ? normalized(topo.plane->in_plane(d)) : d;
 }
 
 // Turns column v from its kept direction towards the front normal n by the least blend
@@ -130,7 +154,13 @@ double visibility_of(const StepDirections& d, const WallTopology& topo, int v, c
 StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
                                        const std::vector<char>& active, const ExtrusionParams& p) {
   const int nv = static_cast<int>(front.points.size());
-  const PointNormals pn = compute_point_normals(front, topo.fans, p.normal_method);
+  PointNormals pn = compute_point_normals(front, topo.fans, p.normal_method);
+  parallel_vertices(nv, [&](int v) {
+    if (!topo.on_plane[v] || !active[v]) return;
+    const VertexNormal n = front_normal(front, topo, v, p.normal_method);
+    pn.normal[v] = n.normal;
+    pn.status[v] = n.status;
+  });
   StepDirections d;
   d.face_normal = unit_face_normals(front);
   d.n = pn.normal;
@@ -162,7 +192,7 @@ std::vector<char> turn_failing_columns(const std::vector<Triangle>& triangles, c
       if (bad_triangle[*f])
         for (int u : triangles[*f])
           if (grows[u]) sum += d->n[u];
-    const Vec3 cand = normalized(sum);
+    const Vec3 cand = keep_in_plane(topo, v, normalized(sum));
     if (!(norm2(cand) > 0.0)) return;
     const double vis = visibility_of(*d, topo, v, cand);
     if (vis >= min_visibility && vis >= 0.5 * d->visibility[v] && dot(cand, d->n[v]) < 1.0) {

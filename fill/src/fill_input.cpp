@@ -67,6 +67,9 @@ void check_fill_options(const FillOptions& opt) {
     throw InputError("fill: farfield_scale must be > 1, got " + std::to_string(opt.farfield_scale));
   if (!outside && opt.farfield)
     throw InputError("fill: a farfield surface is only used with region outside (external flow)");
+  if (opt.symmetry && (!outside || opt.farfield))
+    throw InputError("fill: a half model (symmetry plane) is filled for external flow with the generated farfield "
+                     "box only (no --farfield surface, no --side inward)");
 }
 
 void check_closed_surface(const TriSurface& s, const std::string& what) {

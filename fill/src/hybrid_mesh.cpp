@@ -55,11 +55,12 @@ MarkedBoundary hybrid_boundary(const VolumeMesh& mesh, const TriSurface& wall, c
     b.marker.push_back(static_cast<int>(BoundaryMarker::kWall));
   }
   for (std::size_t i = 0; i < fill.boundary.triangles.size(); ++i) {
-    if (fill.boundary_marker[i] != kFarfieldMarker) continue;
+    const int m = fill.boundary_marker[i];
+    if (m != kFarfieldMarker && m != kSymmetryMarker) continue;
     const Triangle& t = fill.boundary.triangles[i];
     b.surface.triangles.push_back({static_cast<int>(fill_to_mesh[t[0]]), static_cast<int>(fill_to_mesh[t[2]]),
                                    static_cast<int>(fill_to_mesh[t[1]])});
-    b.marker.push_back(static_cast<int>(BoundaryMarker::kFarfield));
+    b.marker.push_back(static_cast<int>(m == kFarfieldMarker ? BoundaryMarker::kFarfield : BoundaryMarker::kSymmetry));
   }
   return b;
 }

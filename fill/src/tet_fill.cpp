@@ -7,6 +7,7 @@
 #include "blayer/core/errors.h"
 #include "blayer/core/stopwatch.h"
 #include "farfield.h"
+#include "half_domain.h"
 #include "fill_input.h"
 #include "size_field.h"
 #include "tet_output.h"
@@ -88,9 +89,15 @@ std::string meshing_switches(const FillOptions& opt) {
 FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
   const Stopwatch total;
   const bool outside = opt.region == FillOptions::Region::kOutside;
+  const bool half = opt.symmetry.has_value();
   check_fill_options(opt);
-  check_closed_surface(envelope, "envelope");
-  const EnvelopeParts parts = classify_envelope_parts(envelope, opt.region);
+  EnvelopeParts parts;
+  if (half) {
+    check_half_envelope(envelope, *opt.symmetry);
+  } else {
+    check_closed_surface(envelope, "envelope");
+    parts = classify_envelope_parts(envelope, opt.region);
+  }
 
   FillResult result;
   FillStats& st = result.stats;
@@ -102,19 +109,24 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
   st.min_envelope_size = size.min_site_size();
   st.max_envelope_size = size.max_site_size();
 
-  TriSurface far;
-  if (outside && opt.farfield)
-    far = user_farfield(*opt.farfield, envelope, parts.components, size, &st.farfield_size);
+  OuterBoundary outer;
+  if (half)
+    outer = half_domain_boundary(envelope, *opt.symmetry, lo, hi, opt.farfield_scale, size, &st.farfield_size);
+  else if (outside && opt.farfield)
+    outer.surface = user_farfield(*opt.farfield, envelope, parts.components, size, &st.farfield_size);
   else if (outside)
-    far = farfield_box(lo, hi, opt.farfield_scale, size, &st.farfield_size);
+    outer.surface = farfield_box(lo, hi, opt.farfield_scale, size, &st.farfield_size);
+  if (!half) outer.markers.assign(outer.surface.triangles.size(), kFarfieldMarker);
+  const TriSurface& far = outer.surface;
   st.n_farfield_points = static_cast<std::int64_t>(far.points.size());
 
-  FillPlc plc = assemble_plc(envelope, std::move(env_points), far);
+  FillPlc plc = assemble_plc(envelope, std::move(env_points), outer);
   const Stopwatch check_time;
   check_self_intersections(plc, opt.timeout_seconds);
   st.seconds_check = check_time.seconds();
 
-  const std::vector<Vec3> holes = hole_points(envelope, parts, outside, norm(hi - lo));
+  const std::vector<Vec3> holes =
+      half ? closed_body_hole_points(envelope, norm(hi - lo)) : hole_points(envelope, parts, outside, norm(hi - lo));
   for (const Vec3& h : holes) plc.tetgen.holes.insert(plc.tetgen.holes.end(), h.begin(), h.end());
   st.n_holes = static_cast<std::int64_t>(holes.size());
   for (const Vec3& p : plc.points) plc.tetgen.point_metric.push_back(kRegularTetCircumradius * size(p));
@@ -125,7 +137,7 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
                           {"tetgen failed: ", "; check the envelope for slivers and near-touching parts"});
   st.seconds_tetgen = tetgen_time.seconds();
 
-  assemble_fill_result(envelope, far, plc, mesh, &result);
+  assemble_fill_result(envelope, outer, plc, mesh, &result);
   check_conformity(result);
   add_quality_stats(&result);
   st.seconds_total = total.seconds();

@@ -119,8 +119,9 @@ std::vector<FaceRef> single_faces(const std::vector<std::int64_t>& conn) {
 
 }  // namespace
 
-void assemble_fill_result(const TriSurface& envelope, const TriSurface& far, const FillPlc& plc,
+void assemble_fill_result(const TriSurface& envelope, const OuterBoundary& outer, const FillPlc& plc,
                           const TetgenMesh& mesh, FillResult* result) {
+  const TriSurface& far = outer.surface;
   check_returned_points(mesh, plc.points);
   const std::int64_t n_out = static_cast<std::int64_t>(mesh.points.size() / 3);
   const std::int64_t n_env = static_cast<std::int64_t>(envelope.points.size());
@@ -153,9 +154,11 @@ void assemble_fill_result(const TriSurface& envelope, const TriSurface& far, con
     result->boundary_marker.push_back(kEnvelopeMarker);
   }
   const int offset = static_cast<int>(n_env);
-  for (const Triangle& t : far.triangles) {
-    result->boundary.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-    result->boundary_marker.push_back(kFarfieldMarker);
+  for (std::size_t f = 0; f < far.triangles.size(); ++f) {
+    Triangle t = far.triangles[f];
+    for (int& v : t) v = outer.is_envelope_point(v) ? outer.envelope_point(v) : v + offset;
+    result->boundary.triangles.push_back(t);
+    result->boundary_marker.push_back(outer.markers[f]);
   }
   result->stats.n_steiner_points = n_out - static_cast<std::int64_t>(plc.points.size());
   result->stats.n_tets = n_tets;

@@ -12,7 +12,7 @@ namespace blayer::fill_detail {
 // positive volume. result->boundary and boundary_marker: envelope then farfield
 // triangles on those points. Checks that TetGen returned the input points unchanged
 // and first, and only valid point indices.
-void assemble_fill_result(const TriSurface& envelope, const TriSurface& farfield, const FillPlc& plc,
+void assemble_fill_result(const TriSurface& envelope, const OuterBoundary& outer, const FillPlc& plc,
                           const TetgenMesh& mesh, FillResult* result);
 
 // The faces used by exactly one tet are exactly the boundary triangles, no face is

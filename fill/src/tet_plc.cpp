@@ -69,10 +69,21 @@ UsedPoints used_points(const TriSurface& s) {
   return u;
 }
 
-FillPlc assemble_plc(const TriSurface& envelope, UsedPoints envelope_points, const TriSurface& farfield) {
+FillPlc assemble_plc(const TriSurface& envelope, UsedPoints envelope_points, const OuterBoundary& outer) {
+  const TriSurface& farfield = outer.surface;
   FillPlc plc;
   plc.envelope = std::move(envelope_points);
-  plc.farfield = used_points(farfield);
+  // The farfield's own points that its triangles use (envelope points they name are the
+  // envelope's).
+  plc.farfield.local_of.assign(farfield.points.size(), -1);
+  for (const Triangle& t : farfield.triangles)
+    for (int v : t)
+      if (!outer.is_envelope_point(v)) plc.farfield.local_of[v] = 0;
+  for (std::size_t i = 0; i < farfield.points.size(); ++i)
+    if (plc.farfield.local_of[i] == 0) {
+      plc.farfield.local_of[i] = static_cast<int>(plc.farfield.used.size());
+      plc.farfield.used.push_back(static_cast<int>(i));
+    }
   plc.n_envelope_triangles = envelope.triangles.size();
   BLAYER_ASSERT(plc.envelope.local_of.size() == envelope.points.size());
   for (int i : plc.envelope.used) plc.points.push_back(envelope.points[i]);
@@ -85,9 +96,11 @@ FillPlc assemble_plc(const TriSurface& envelope, UsedPoints envelope_points, con
     for (int v : tri) t.triangles.push_back(plc.envelope.local_of[v]);
     t.markers.push_back(kEnvelopeMarker);
   }
-  for (const Triangle& tri : farfield.triangles) {
-    for (int v : tri) t.triangles.push_back(n_local_envelope + plc.farfield.local_of[v]);
-    t.markers.push_back(kFarfieldMarker);
+  for (std::size_t f = 0; f < farfield.triangles.size(); ++f) {
+    for (int v : farfield.triangles[f])
+      t.triangles.push_back(outer.is_envelope_point(v) ? plc.envelope.local_of[outer.envelope_point(v)]
+                                                       : n_local_envelope + plc.farfield.local_of[v]);
+    t.markers.push_back(outer.markers[f]);
   }
   return plc;
 }

@@ -28,9 +28,20 @@ struct FillPlc {
   std::size_t n_envelope_triangles = 0;
 };
 
-// Envelope triangles (marker kEnvelopeMarker) then farfield triangles (kFarfieldMarker).
-// Throws InputError when two boundary points coincide.
-FillPlc assemble_plc(const TriSurface& envelope, UsedPoints envelope_points, const TriSurface& farfield);
+// The outer boundary of the fill: the farfield's triangles with a marker each
+// (kFarfieldMarker; kSymmetryMarker on a half model's symmetry plane). A triangle
+// index i >= surface.points.size() names envelope point i - surface.points.size(): the
+// symmetry plane's facet meets the envelope along its cut.
+struct OuterBoundary {
+  TriSurface surface;
+  std::vector<int> markers;
+  int envelope_point(int i) const { return i - static_cast<int>(surface.points.size()); }
+  bool is_envelope_point(int i) const { return i >= static_cast<int>(surface.points.size()); }
+};
+
+// Envelope triangles (marker kEnvelopeMarker) then the outer boundary's triangles with
+// their markers. Throws InputError when two boundary points coincide.
+FillPlc assemble_plc(const TriSurface& envelope, UsedPoints envelope_points, const OuterBoundary& outer);
 
 // "envelope triangle 12 near (x, y, z)" for a face given in local indices.
 std::string describe_plc_face(const FillPlc& plc, const std::array<int, 3>& face);

@@ -173,6 +173,7 @@ void check_vertices(const TriSurface& s, ProblemList& problems) {
 // consistently oriented).
 void orient_components(const EdgeTopology& edges, const PrepareOptions& opt, const Tolerances& tol,
                        ProblemList& problems, PreparedSurface& out) {
+  const bool half_model = out.symmetry.has_value();
   TriSurface& s = out.surface;
   BLAYER_ASSERT(edges.n_non_manifold == 0 && edges.n_inconsistent == 0);
   const SurfaceComponents comps = edge_connected_components(s, edges);
@@ -181,11 +182,21 @@ void orient_components(const EdgeTopology& edges, const PrepareOptions& opt, con
   std::vector<char> comp_open(out.n_components, 0);
   for (const SurfaceEdge& e : edges.edges)
     if (e.kind == EdgeKind::kBoundary) comp_open[comp[e.triangle[0]]] = 1;
-  const std::vector<double> volume = component_signed_volumes(s, comps);
+  // A half model's components are closed by the symmetry plane: about a point of the
+  // plane the cut's faces would add nothing to the signed volume.
+  std::vector<double> volume;
+  if (half_model) {
+    TriSurface about_plane = s;
+    const Vec3 o = out.symmetry->project(Vec3{0.0, 0.0, 0.0});
+    for (Vec3& p : about_plane.points) p = p - o;
+    volume = component_signed_volumes(about_plane, comps);
+  } else {
+    volume = component_signed_volumes(s, comps);
+  }
   const double diag = bounding_box_diagonal(s.points);
   std::vector<char> flip(out.n_components, 0);
   for (int c = 0; c < out.n_components; ++c) {
-    if (comp_open[c]) {
+    if (comp_open[c] && !half_model) {
       flip[c] = opt.side == Side::kInward;
       continue;
     }
@@ -204,7 +215,7 @@ void orient_components(const EdgeTopology& edges, const PrepareOptions& opt, con
   for (int c = 0; c < out.n_components; ++c) {
     if (!flip[c]) continue;
     ++out.n_flipped_components;
-    if (comp_open[c])
+    if (comp_open[c] && !half_model)
       out.notes.push_back("open component " + std::to_string(c) + ": winding reversed for --side inward");
     else
       out.notes.push_back(std::string("closed component ") + std::to_string(c) + " was oriented " +
@@ -234,14 +245,34 @@ PreparedSurface prepare_surface(const PolygonSoup& soup, const std::string& file
 
   check_triangles(s, name, tol, problems);
   const EdgeTopology edges = build_edge_topology(s);
-  check_edges(edges, name, opt.allow_open, problems);
+  check_edges(edges, name, /*allow_open=*/true, problems);
+  problems.raise_if_any();
+  SymmetryFinding symmetry = find_symmetry_plane(s, edges, opt.symmetry);
+  // A found plane that does not make a clean half model (faces in it, the surface on
+  // both sides) is only an error when the user did not allow open surfaces: a flat
+  // open plate's boundary lies in its own plane too.
+  if (!symmetry.problems.empty() && opt.symmetry.mode == SymmetryMode::kAuto && opt.allow_open) symmetry = {};
+  for (const std::string& p : symmetry.problems) problems.add("symmetry plane", p);
+  problems.raise_if_any();
+  check_edges(edges, name, opt.allow_open || symmetry.plane.has_value(), problems);
   problems.raise_if_any();
   check_vertices(s, problems);
   problems.raise_if_any();
 
+  if (symmetry.plane) {
+    snap_to_symmetry_plane(symmetry, &out.surface);
+    out.symmetry = symmetry.plane;
+    out.n_symmetry_points = static_cast<int>(symmetry.plane_points.size());
+    out.symmetry_snap = symmetry.max_snap;
+    std::ostringstream note;
+    note << "half model: the open boundary (" << out.n_symmetry_points << " points) lies in the symmetry plane "
+         << symmetry.plane->describe() << (opt.symmetry.mode == SymmetryMode::kAuto ? " (found)" : "")
+         << "; its points were snapped onto it (by at most " << symmetry.max_snap << ")";
+    out.notes.push_back(note.str());
+  }
   orient_components(edges, opt, tol, problems, out);
   out.closed = edges.n_boundary == 0;
-  if (!out.closed)
+  if (!out.closed && !out.symmetry)
     out.notes.push_back("open surface (" + std::to_string(edges.n_boundary) +
                         " boundary edges): layers grow on the side the triangles' normals point to");
   return out;

@@ -1,5 +1,7 @@
 #include "blayer/io/solver_mesh.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <numeric>
 #include <set>
@@ -65,8 +67,18 @@ std::size_t SolverMesh::n_cells_of(CellType t) const {
   return static_cast<std::size_t>(std::count(cells.cell_types.begin(), cells.cell_types.end(), t));
 }
 
-SolverMesh make_solver_mesh(const VolumeMesh& mesh, const std::vector<PatchTriangles>& listed,
-                            const std::string& rest_name) {
+SolverMesh make_solver_mesh(const VolumeMesh& mesh, const std::vector<PatchTriangles>& listed_in,
+                            const std::string& rest_name, const SymmetryPlane* symmetry) {
+  std::vector<PatchTriangles> listed = listed_in;
+  int symmetry_patch = -1;
+  if (symmetry) {
+    for (std::size_t p = 0; p < listed.size() && symmetry_patch < 0; ++p)
+      if (listed[p].kind == PatchKind::kSymmetry) symmetry_patch = static_cast<int>(p);
+    if (symmetry_patch < 0) {
+      symmetry_patch = static_cast<int>(listed.size());
+      listed.push_back({"symmetry", PatchKind::kSymmetry, {}});
+    }
+  }
   std::set<std::string> names{rest_name};
   for (const PatchTriangles& p : listed)
     if (!names.insert(p.name).second) throw InputError("two boundary patches are named '" + p.name + "'");
@@ -75,7 +87,19 @@ SolverMesh make_solver_mesh(const VolumeMesh& mesh, const std::vector<PatchTrian
   out.cells = used_points_only(mesh, &out.point_of_input);
   MeshFaces all = build_mesh_faces(out.cells);
   const int rest = static_cast<int>(listed.size());
-  const std::vector<int> patch = classify_boundary(all, listed, out.point_of_input, rest);
+  std::vector<int> patch = classify_boundary(all, listed, out.point_of_input, rest);
+  if (symmetry) {
+    // The rest's faces that lie in the plane: the layers' side faces over the cut.
+    const double tol = kOnPlaneRelTol * bounding_box_diagonal(out.cells.points);
+    for (std::size_t f = all.n_internal; f < all.size(); ++f) {
+      int& pf = patch[f - all.n_internal];
+      if (pf != rest) continue;
+      bool on = true;
+      for (int k = 0; k < all.n_nodes[f]; ++k)
+        on = on && std::fabs(symmetry->signed_distance(out.cells.points[all.nodes[f][k]])) <= tol;
+      if (on) pf = symmetry_patch;
+    }
+  }
 
   // Boundary faces patch by patch (stable: each patch keeps the owner order).
   std::vector<std::size_t> order(all.n_boundary());

@@ -70,8 +70,9 @@ TEST(Cli, UnknownConfigKeyIsAnError) {
 
 TEST(Cli, BadSurfaceFailsWithTheFileAndElementNamedAndNoOutput) {
   TempDir dir;
-  // Tetrahedron with one face missing: a hole.
-  dir.write("hole.off", "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n");
+  // Tetrahedron with two faces missing: a hole whose rim is not planar (a planar one
+  // would be a half model's cut).
+  dir.write("hole.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n");
   expect_clean_failure("normals " + dir.file("hole.off") + " -o " + dir.file("n.vtp"), dir, dir.file("n.vtp"),
                        "hole.off");
   expect_clean_failure("extrude " + dir.file("hole.off") + " -o " + dir.file("o.vtu"), dir, dir.file("o.vtu"),

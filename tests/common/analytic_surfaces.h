@@ -142,4 +142,75 @@ inline TriSurface merged(TriSurface a, const TriSurface& b) {
   return a;
 }
 
+// The part of s on the side coord[axis] >= 0 (points within 1e-12 of the plane are put
+// on it exactly): the triangles whose three points lie there, on their points only. A
+// half model cut by the plane coord[axis] = 0, when s is symmetric about it and has
+// points on it.
+inline TriSurface cut_at_coordinate_plane(TriSurface s, int axis) {
+  for (Vec3& p : s.points)
+    if (std::fabs(p[axis]) < 1e-12) p[axis] = 0.0;
+  std::vector<int> id(s.points.size(), -1);
+  TriSurface out;
+  for (const Triangle& t : s.triangles) {
+    if (s.points[t[0]][axis] < 0 || s.points[t[1]][axis] < 0 || s.points[t[2]][axis] < 0) continue;
+    Triangle u;
+    for (int k = 0; k < 3; ++k) {
+      if (id[t[k]] < 0) {
+        id[t[k]] = static_cast<int>(out.points.size());
+        out.points.push_back(s.points[t[k]]);
+      }
+      u[k] = id[t[k]];
+    }
+    out.triangles.push_back(u);
+  }
+  return out;
+}
+
+// A half model and its mirror image about coord[axis] = 0, merged along the cut: the
+// full model whose half it is (the mirrored triangles reversed, so the whole stays
+// consistently oriented). Points 0..#half-1 are the half's, the mirror's off-plane
+// points follow.
+inline TriSurface mirrored_about_coordinate_plane(const TriSurface& half, int axis) {
+  TriSurface full = half;
+  std::vector<int> mirror(half.points.size());
+  for (std::size_t i = 0; i < half.points.size(); ++i) {
+    if (half.points[i][axis] == 0.0) {
+      mirror[i] = static_cast<int>(i);
+      continue;
+    }
+    Vec3 q = half.points[i];
+    q[axis] = -q[axis];
+    mirror[i] = static_cast<int>(full.points.size());
+    full.points.push_back(q);
+  }
+  for (const Triangle& t : half.triangles) full.triangles.push_back({mirror[t[0]], mirror[t[2]], mirror[t[1]]});
+  return full;
+}
+
+// A closed cylinder of radius r along z from 0 to length, n_around points per ring
+// (start at angle 0), n_along rings, caps fanned from their centre points.
+inline TriSurface capped_cylinder(int n_around, int n_along, double r, double length) {
+  TriSurface s;
+  for (int k = 0; k <= n_along; ++k)
+    for (int j = 0; j < n_around; ++j) {
+      const double a = 2 * M_PI * j / n_around;
+      s.points.push_back({r * std::cos(a), r * std::sin(a), length * k / n_along});
+    }
+  auto id = [&](int k, int j) { return k * n_around + (j % n_around); };
+  for (int k = 0; k < n_along; ++k)
+    for (int j = 0; j < n_around; ++j) {
+      s.triangles.push_back({id(k, j), id(k, j + 1), id(k + 1, j + 1)});
+      s.triangles.push_back({id(k, j), id(k + 1, j + 1), id(k + 1, j)});
+    }
+  const int bottom = static_cast<int>(s.points.size());
+  s.points.push_back({0, 0, 0});
+  const int top = static_cast<int>(s.points.size());
+  s.points.push_back({0, 0, length});
+  for (int j = 0; j < n_around; ++j) {
+    s.triangles.push_back({bottom, id(0, j + 1), id(0, j)});
+    s.triangles.push_back({top, id(n_along, j), id(n_along, j + 1)});
+  }
+  return s;
+}
+
 }  // namespace blayer::test_surfaces

@@ -94,7 +94,7 @@ TEST(ColumnHeights, WallGapFitsColumnsFacingAnotherWallIntoTheSafetyShare) {
   p.height_smoothing_rings = 0;
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
-  FrontChecker checker(wall, true);
+  FrontChecker checker(wall, build_wall_topology(wall), true);
   const ColumnPlan plan = plan_column_heights(wall, topo, law, p, d, checker.wall_rays());
   const int centre = 2 * 5 + 2;
   EXPECT_EQ(plan.limit[centre], StopReason::kWallGap);
@@ -191,7 +191,7 @@ struct FlatFirstLayer {
 TEST(FrontChecker, FlagsAnInvertedCellAndOnlyItsColumns) {
   FlatFirstLayer f(2);
   auto& [wall, top, next, layers, grows] = f;
-  FrontChecker checker(wall, true);
+  FrontChecker checker(wall, build_wall_topology(wall), true);
   checker.begin_layer(0, top, layers);
   FrontVerdict v;
   checker.check(0, top, next, grows, &v);
@@ -212,7 +212,7 @@ TEST(FrontChecker, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {
   FlatFirstLayer f(3);
   auto& [wall, top, next, layers, grows] = f;
   next[5] = {1.0, 1.0, -0.05};
-  FrontChecker incremental(wall, true);
+  FrontChecker incremental(wall, build_wall_topology(wall), true);
   incremental.begin_layer(0, top, layers);
   FrontVerdict first, second, fresh;
   incremental.check(0, top, next, grows, &first);
@@ -220,7 +220,7 @@ TEST(FrontChecker, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {
   next[5] = {1.0, 1.0, 0.1};  // repaired
   next[10] = {2.0, 2.0, -0.05};  // and another column broken
   incremental.check(1, top, next, grows, &second);
-  FrontChecker full(wall, true);
+  FrontChecker full(wall, build_wall_topology(wall), true);
   full.begin_layer(0, top, layers);
   full.check(0, top, next, grows, &fresh);
   EXPECT_EQ(second.bad, fresh.bad);
@@ -229,7 +229,7 @@ TEST(FrontChecker, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {
 
 TEST(FrontChecker, FlagsANewFrontThatCrossesTheOtherWall) {
   const TriSurface wall = facing_plates(0.5);
-  FrontChecker checker(wall, true);
+  FrontChecker checker(wall, build_wall_topology(wall), true);
   std::vector<Vec3> top = wall.points, next = wall.points;
   std::vector<int> layers(top.size(), 0);
   std::vector<char> grows(top.size(), 0);
@@ -268,7 +268,7 @@ TEST(LayerSteps, ProximityCompressesTheRemainingLayersIntoTheGapShare) {
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
   ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
   ColumnState c = ColumnState::on_wall(wall.points, topo.used);
-  FrontChecker checker(wall, true);
+  FrontChecker checker(wall, build_wall_topology(wall), true);
   checker.begin_layer(0, c.top, c.layers);
   limit_by_proximity(0, checker.front_rays(), topo, planes, d, p, &plan, &c);
   const int centre = 2 * 5 + 2;
@@ -296,7 +296,7 @@ TEST(LayerSteps, AFirstLayerThatCannotBeMadeValidIsNotGrown) {
   d.n[centre] = normalized(Vec3{3.0, 0.0, 1.0});
   ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
   ColumnState c = ColumnState::on_wall(wall.points, topo.used);
-  FrontChecker checker(wall, true);
+  FrontChecker checker(wall, build_wall_topology(wall), true);
   checker.begin_layer(0, c.top, c.layers);
   std::vector<Vec3> next(wall.points.size());
   const std::vector<char> grows = settle_layer(0, wall.triangles, topo, planes, p, &checker, &d, &plan, &c, &next);
@@ -329,7 +329,7 @@ TEST(LayerSteps, AFailingUpperLayerIsLoweredBeforeTheColumnEnds) {
   // across its neighbour one unit away only at heights above ~1; make the neighbour
   // spacing effectively 0.25 by leaning harder.
   d.n[centre] = normalized(Vec3{4.0, 0.0, 1.0});
-  FrontChecker checker(wall, true);
+  FrontChecker checker(wall, build_wall_topology(wall), true);
   checker.begin_layer(1, c.top, c.layers);
   std::vector<Vec3> next(wall.points.size());
   const std::vector<char> grows = settle_layer(1, wall.triangles, topo, planes, p, &checker, &d, &plan, &c, &next);

@@ -8,6 +8,7 @@
 #include "blayer/core/errors.h"
 #include "blayer/extruder/front_checker.h"
 #include "blayer/extruder/layer_cells.h"
+#include "blayer/extruder/wall_topology.h"
 #include "blayer/quality/cell_validity.h"
 #include "lcg.h"
 #include "test_surfaces.h"
@@ -65,10 +66,10 @@ TEST(SolverLimits, ShearedFirstLayerPassesTheExactTestButNotTheWallSkewnessLimit
   // whose extent along x is 2/3: boundary skewness 3 / (2/3) = 4.5.
   Layer l({6.0, 0.0, 1.0});
   ASSERT_TRUE(every_cell_valid(l.wall, l.top, l.next));
-  FrontChecker exact_only(l.wall, true);
+  FrontChecker exact_only(l.wall, build_wall_topology(l.wall), true);
   EXPECT_FALSE(check_layer(&exact_only, 0, l.top, l.next, l.layers, l.grows).any_bad);
 
-  FrontChecker limited(l.wall, limits(boundary_skewness(4.0)));
+  FrontChecker limited(l.wall, build_wall_topology(l.wall), limits(boundary_skewness(4.0)));
   const FrontVerdict v = check_layer(&limited, 0, l.top, l.next, l.layers, l.grows);
   ASSERT_TRUE(v.any_bad);
   for (std::size_t p = 0; p < l.top.size(); ++p) {
@@ -77,13 +78,13 @@ TEST(SolverLimits, ShearedFirstLayerPassesTheExactTestButNotTheWallSkewnessLimit
   }
   for (char b : v.bad_triangle) EXPECT_TRUE(b);
 
-  FrontChecker looser(l.wall, limits(boundary_skewness(4.6)));
+  FrontChecker looser(l.wall, build_wall_topology(l.wall), limits(boundary_skewness(4.6)));
   EXPECT_FALSE(check_layer(&looser, 0, l.top, l.next, l.layers, l.grows).any_bad);
 }
 
 TEST(SolverLimits, DefaultLimitsRefuseTheShearedLayer) {
   Layer l({6.0, 0.0, 1.0});
-  FrontChecker defaults(l.wall, ExtrusionParams{});
+  FrontChecker defaults(l.wall, build_wall_topology(l.wall), ExtrusionParams{});
   EXPECT_TRUE(check_layer(&defaults, 0, l.top, l.next, l.layers, l.grows).any_bad);
 }
 
@@ -100,7 +101,7 @@ TEST(SolverLimits, FaceToTheCellBelowIsJudgedWithThatCellsCentre) {
   internal.max_skewness = 4.0;
   const std::vector<int> one(l.top.size(), 1);
 
-  FrontChecker marching(l.wall, limits(internal));
+  FrontChecker marching(l.wall, build_wall_topology(l.wall), limits(internal));
   EXPECT_FALSE(check_layer(&marching, 0, l.top, l.next, l.layers, l.grows).any_bad);
   const FrontVerdict v = check_layer(&marching, 1, l.next, second, one, l.grows);
   EXPECT_TRUE(v.any_bad);
@@ -108,11 +109,11 @@ TEST(SolverLimits, FaceToTheCellBelowIsJudgedWithThatCellsCentre) {
 
   // A checker that did not see layer 0 does not know the cell below: the face is not
   // judged against it.
-  FrontChecker fresh(l.wall, limits(internal));
+  FrontChecker fresh(l.wall, build_wall_topology(l.wall), limits(internal));
   EXPECT_FALSE(check_layer(&fresh, 1, l.next, second, one, l.grows).any_bad);
 
   internal.max_skewness = 4.6;
-  FrontChecker looser(l.wall, limits(internal));
+  FrontChecker looser(l.wall, build_wall_topology(l.wall), limits(internal));
   check_layer(&looser, 0, l.top, l.next, l.layers, l.grows);
   EXPECT_FALSE(check_layer(&looser, 1, l.next, second, one, l.grows).any_bad);
 }
@@ -125,11 +126,11 @@ TEST(SolverLimits, SideFaceBetweenTwoNewCellsFailsBothCells) {
   Layer l({0.0, 0.0, 0.2});
   AcceptanceLimits internal;
   internal.max_skewness = 0.05;
-  FrontChecker right(l.wall, limits(internal));
+  FrontChecker right(l.wall, build_wall_topology(l.wall), limits(internal));
   EXPECT_FALSE(check_layer(&right, 0, l.top, l.next, l.layers, l.grows).any_bad);
   l.next[5] += Vec3{0.3, -0.6, 0.0};
   ASSERT_TRUE(every_cell_valid(l.wall, l.top, l.next));
-  FrontChecker checker(l.wall, limits(internal));
+  FrontChecker checker(l.wall, build_wall_topology(l.wall), limits(internal));
   const FrontVerdict v = check_layer(&checker, 0, l.top, l.next, l.layers, l.grows);
   ASSERT_TRUE(v.any_bad);
   // Triangles not touching point 5 or its neighbours' cells keep their verdict: the far
@@ -158,7 +159,7 @@ TEST(SolverLimits, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {
   // attempt must end with the verdicts of a fresh check.
   Layer l({0.0, 0.0, 0.2});
   AcceptanceLimits strict{20.0, 0.3, 0.3, 10.0, true, true};
-  FrontChecker incremental(l.wall, limits(strict));
+  FrontChecker incremental(l.wall, build_wall_topology(l.wall), limits(strict));
   incremental.begin_layer(0, l.top, l.layers);
   testing::Lcg rng(11);
   std::size_t n_bad_seen = 0;
@@ -170,7 +171,7 @@ TEST(SolverLimits, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {
     if (attempt == 3) l.grows[6] = 0;  // a column stops: pyramids and tets around it
     FrontVerdict inc, fresh;
     incremental.check(attempt, l.top, l.next, l.grows, &inc);
-    FrontChecker full(l.wall, limits(strict));
+    FrontChecker full(l.wall, build_wall_topology(l.wall), limits(strict));
     full.begin_layer(0, l.top, l.layers);
     full.check(0, l.top, l.next, l.grows, &fresh);
     EXPECT_EQ(inc.bad, fresh.bad) << "attempt " << attempt;

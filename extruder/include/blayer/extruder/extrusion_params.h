@@ -2,6 +2,9 @@
 // by the marching stages (extrude_layers.h describes how each parameter is used).
 #pragma once
 
+#include <optional>
+
+#include "blayer/core/symmetry_plane.h"
 #include "blayer/extruder/growth_law.h"
 #include "blayer/normals/point_normals.h"
 #include "blayer/quality/solver_acceptance.h"
@@ -85,6 +88,11 @@ struct ExtrusionParams {
   // the measurements behind the defaults (lower non-orthogonality limits and the face
   // tets cost the pyHyp wings 9 % of their columns and more).
   AcceptanceLimits solver_limits{89.99, 4.0, 4.0, 0.0, true, false};
+  // A half model's symmetry plane (io/symmetry_detection.h): the wall's boundary points
+  // on it grow columns that stay in it (directions from the fan mirrored about the
+  // plane, projected into it); every other column stays on the model's side, the plane
+  // limiting it like a wall.
+  std::optional<SymmetryPlane> symmetry;
 };
 
 // Throws InputError naming the field when a parameter is out of its range.

@@ -65,6 +65,10 @@ struct ExtrusionReport {
   std::array<int, kStopReasonCount> stopped_columns{};  // ended before N, by reason
   std::array<int, kStopReasonCount> limited_columns{};  // compressed or ended, by first limit
   int n_turned_directions = 0;        // column directions turned to stay visible (kKept)
+  // Half models: columns on the symmetry plane, and the largest distance from it of any
+  // of their points (0 for a coordinate plane; rounding otherwise).
+  int n_symmetry_columns = 0;
+  double max_symmetry_distance = 0.0;
   std::vector<int> columns_per_layer; // columns that grew in layer k
 
   // Verdict: columns whose top is below kThicknessReachedFraction of their target, by

@@ -43,6 +43,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "blayer/core/surface.h"
@@ -50,6 +51,7 @@
 #include "blayer/extruder/proximity_rays.h"
 #include "blayer/extruder/triangle_bvh.h"
 #include "blayer/extruder/triangle_intersections.h"
+#include "blayer/extruder/wall_topology.h"
 #include "blayer/quality/solver_acceptance.h"
 
 namespace blayer {
@@ -65,10 +67,12 @@ struct FrontVerdict {
 class FrontChecker {
  public:
   // check_collisions false: cells are still checked, the intersection test is skipped.
-  // No solver-acceptance limits.
-  FrontChecker(const TriSurface& wall, bool check_collisions);
+  // topo.plane (a half model's symmetry plane): a new point of a column off the plane
+  // must lie strictly on the model's side of it (a collision otherwise); points of the
+  // columns on it lie in it by construction. No solver-acceptance limits.
+  FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions);
   // params.check_collisions and params.solver_limits.
-  FrontChecker(const TriSurface& wall, const ExtrusionParams& params);
+  FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params);
 
   // The wall alone, for the wall-gap cap before marching.
   ProximityRays wall_rays() const;
@@ -92,9 +96,13 @@ class FrontChecker {
   void cells_below(int k, const std::vector<Vec3>& top, const std::vector<int>& layers);
   void check_intersections(const std::vector<Vec3>& next);
   Box soup_box(const IndexedTriangle& t) const;
-  void build_edge_neighbours();
+  void build_edge_neighbours(const TriSurface& wall);
+
+  void check_symmetry_side(const std::vector<Vec3>& next);
 
   const std::vector<Triangle>* triangles_;
+  std::optional<SymmetryPlane> plane_;
+  std::vector<char> on_plane_;
   const std::vector<Vec3>* wall_points_;
   int nv_ = 0, nf_ = 0, k_ = 0;
   bool check_collisions_ = true;
@@ -119,12 +127,13 @@ class FrontChecker {
   std::vector<FaceGeometry> side_geo_;  // per slot: the side face seen from its triangle
   int previous_layer_ = -1;
   bool below_known_ = false;
-  std::vector<char> invalid_, cap_bad_, side_bad_;
+  std::vector<char> invalid_, cap_bad_, side_face_bad_;
 
   // Attempt state.
   std::vector<char> grows_, prev_grows_, moved_;
   std::vector<Vec3> prev_next_;
   std::vector<char> bad_cell_, collided_, tri_moved_, tri_grows_, query_;
+  std::vector<char> side_bad_;  // a point of the new triangle off the model's side of the plane
   tbb::enumerable_thread_specific<std::vector<int>> partner_hits_;
 };
 

@@ -10,6 +10,7 @@
 
 #include "blayer/core/ray_triangle.h"
 #include "blayer/core/surface.h"
+#include "blayer/core/symmetry_plane.h"
 #include "blayer/extruder/triangle_bvh.h"
 
 namespace blayer {
@@ -25,10 +26,13 @@ struct ProximityRays {
   const std::vector<Vec3>* front_points = nullptr;  // null: the wall only
   const TriangleBvh* front_tree = nullptr;
   const std::vector<Vec3>* front_normal = nullptr;
+  // A half model's symmetry plane, an obstacle for the columns not on it (on_plane).
+  const SymmetryPlane* plane = nullptr;
+  const std::vector<char>* on_plane = nullptr;
 
   // Distance to the first triangle hit along dir from o within t_max that is not
   // incident to column v and faces the ray (dir . normal < 0: a wall or front seen
-  // from its fluid side); +inf if none.
+  // from its fluid side), or to the symmetry plane for a column off it; +inf if none.
   double first_hit(int v, const Vec3& o, const Vec3& dir, double t_max) const;
 };
 

@@ -28,7 +28,7 @@ namespace blayer {
 enum class BoundaryMarker : int {
   kWall = 1,      // the wall surface the layers grow on
   kFarfield = 2,  // the farfield box or the user's farfield surface
-  kSymmetry = 3,  // reserved for symmetry planes; not produced yet
+  kSymmetry = 3,  // a half model's symmetry plane (the fill's plane facet)
 };
 
 // Appends the fill's tets to the layer mesh: envelope point i of the fill becomes mesh
@@ -45,7 +45,8 @@ struct MarkedBoundary {
 };
 
 // The boundary of the hybrid mesh: the wall's triangles (kWall), then the fill's
-// farfield triangles (kFarfield), on the mesh's points, every triangle oriented
+// farfield triangles (kFarfield) and plane facet triangles (kSymmetry; the layers' own
+// faces on the plane are not triangles and are not listed), on the mesh's points, every triangle oriented
 // outward: its right-hand normal points out of the meshed domain (into the body at the
 // wall, away from the domain at the farfield), the convention of solver boundary
 // faces. For region inside (internal flow) the boundary is the wall alone.

@@ -68,6 +68,14 @@
 // Steiner point, no missing or extra boundary face); no face is shared by more than two
 // tets; the tet on each envelope triangle lies on the side its normal points to.
 //
+// Symmetry plane (option symmetry, a half model): the envelope is closed up to the plane
+// (its boundary edges lie exactly on it); the farfield is the box the mirrored model
+// would get, cut by the plane; the plane facet is the box's face on the plane outside
+// the envelope's cut, triangulated by constrained Delaunay refinement (smallest angle
+// 20.7 degrees, edges up to the box spacing) without splitting the box's or the cut's
+// edges, marker 3; bodies cut by the plane need no hole point. Only the generated box,
+// region outside and coordinate planes.
+//
 // Failure behaviour: throws blayer::InputError for bad input (open, non-manifold,
 // inconsistently oriented, self-intersecting, degenerate or duplicate points, wrong
 // region for the orientation, farfield not enclosing the envelope), for every TetGen
@@ -77,7 +85,10 @@
 #include <cstdint>
 #include <vector>
 
+#include <optional>
+
 #include "blayer/core/surface.h"
+#include "blayer/core/symmetry_plane.h"
 #include "blayer/core/volume_mesh.h"
 
 namespace blayer {
@@ -113,6 +124,12 @@ struct FillOptions {
 
   // Wall-clock limit for each TetGen child process, seconds; 0: none.
   double timeout_seconds = 600.0;
+
+  // A half model's symmetry plane (a coordinate plane; region outside, generated box):
+  // the envelope may be open along it, the farfield is the box cut by it, and the
+  // plane facet between the box and the envelope's cut closes the domain (marker
+  // kSymmetryMarker). See "Symmetry plane" above.
+  std::optional<SymmetryPlane> symmetry;
 };
 
 struct FillStats {
@@ -149,6 +166,7 @@ struct FillResult {
 
 inline constexpr int kEnvelopeMarker = 1;
 inline constexpr int kFarfieldMarker = 2;
+inline constexpr int kSymmetryMarker = 3;
 
 // Fills the region selected by opt.region with tetrahedra; see the file comment for
 // contract, switches and failure behaviour. blayer/fill/hybrid_mesh.h joins the result

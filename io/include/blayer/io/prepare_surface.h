@@ -11,15 +11,21 @@
 // Orientation: each closed connected component is oriented so that its triangles'
 // normals point into the fluid: outward (away from the enclosed volume) for --side
 // outward, inward for --side inward. Components are flipped as needed, with a note.
-// Open surfaces keep the file's winding (reversed for --side inward).
+// Open surfaces keep the file's winding (reversed for --side inward), except half models:
+// a surface whose open boundary lies in a symmetry plane (symmetry_detection.h) has its
+// boundary snapped onto the plane, and each of its components is oriented as if closed
+// by the plane (its signed volume taken about a point of the plane, where the cut adds
+// nothing).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "blayer/core/surface.h"
 #include "blayer/core/tolerances.h"
 #include "blayer/io/read_surface.h"
+#include "blayer/io/symmetry_detection.h"
 
 namespace blayer {
 
@@ -28,6 +34,7 @@ enum class Side { kOutward, kInward };
 struct PrepareOptions {
   Side side = Side::kOutward;
   bool allow_open = false;
+  SymmetryRequest symmetry;  // auto: a half model's plane is found from its boundary
 };
 
 struct PreparedSurface {
@@ -37,6 +44,9 @@ struct PreparedSurface {
   int n_flipped_components = 0;
   int n_components = 0;
   double enclosed_volume = 0.0;    // |signed volume| summed over closed components
+  std::optional<SymmetryPlane> symmetry;  // the half model's plane, its points snapped on it
+  int n_symmetry_points = 0;
+  double symmetry_snap = 0.0;      // largest distance a boundary point was moved onto it
 };
 
 // Throws InputError listing the problems found (at most a few of each kind, with counts)

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "blayer/core/surface.h"
+#include "blayer/core/symmetry_plane.h"
 #include "blayer/core/volume_mesh.h"
 #include "blayer/io/mesh_faces.h"
 
@@ -56,10 +57,17 @@ struct SolverMesh {
   std::size_t n_boundary_faces() const { return faces.n_boundary(); }
 };
 
-// Builds the solver mesh. Throws InputError when two listed patches share a name or the
-// mesh has a face shared by three or more cells.
+// A boundary face whose nodes all lie within this fraction of the bounding-box diagonal
+// of the symmetry plane lies in it: the mesh's points on the plane are on it exactly
+// (coordinate planes) or to rounding.
+constexpr double kOnPlaneRelTol = 1e-12;
+
+// Builds the solver mesh. With a symmetry plane, boundary faces that no listed patch
+// claims and that lie in the plane (the layers' side faces over a half model's cut)
+// join the listed symmetry patch, or a new one named "symmetry". Throws InputError when
+// two listed patches share a name or the mesh has a face shared by three or more cells.
 SolverMesh make_solver_mesh(const VolumeMesh& mesh, const std::vector<PatchTriangles>& listed,
-                            const std::string& rest_name);
+                            const std::string& rest_name, const SymmetryPlane* symmetry = nullptr);
 
 // The wall's patches: one per edge-connected component of the wall (core's
 // surface_components), named "wall" when there is one component and "wall_1",

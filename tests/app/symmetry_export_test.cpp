@@ -1,0 +1,100 @@
+// A half model through the whole pipeline: found symmetry plane, layers, the fill of
+// the half domain, the symmetry patch in the solver formats, and the plane tiled
+// exactly by the symmetry faces and the body's cut.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "../io/solver_tools.h"
+#include "../io/temp_dir.h"
+#include "analytic_surfaces.h"
+#include "blayer/io/mesh_faces.h"
+#include "blayer/io/vtk_io.h"
+#include "run_cli.h"
+
+namespace blayer {
+namespace {
+
+using testing::run_blayer;
+using testing::TempDir;
+
+// The upper half of a latitude-longitude sphere as OFF text: open along z = 0.
+std::string half_sphere_off() {
+  const TriSurface s = test_surfaces::cut_at_coordinate_plane(test_surfaces::uv_sphere(10, 20, 1.0, 0.0), 2);
+  std::ostringstream os;
+  os.precision(17);
+  os << "OFF\n" << s.points.size() << " " << s.triangles.size() << " 0\n";
+  for (const Vec3& p : s.points) os << p[0] << " " << p[1] << " " << p[2] << "\n";
+  for (const Triangle& t : s.triangles) os << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+  return os.str();
+}
+
+// Area of a planar polygon face in the plane z = 0.
+double area_in_z0(const VolumeMesh& m, const std::array<std::int64_t, 4>& nodes, int n) {
+  double a = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const Vec3& p = m.points[nodes[k]];
+    const Vec3& q = m.points[nodes[(k + 1) % n]];
+    a += p[0] * q[1] - q[0] * p[1];
+  }
+  return 0.5 * std::fabs(a);
+}
+
+TEST(SymmetryExport, HalfSphereHybridTilesThePlaneAndPassesCheckMesh) {
+  TempDir dir;
+  const std::string surface = dir.write("half.off", half_sphere_off());
+  const std::string vtu = dir.file("half.vtu");
+  const auto r = run_blayer("extrude " + surface + " --layers 3 --first-height 0.01 --growth-ratio 1.2 --fill "
+                            "--farfield-scale 4 -o " + vtu,
+                            dir.file(""));
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("symmetry plane z = 0 (found)"), std::string::npos) << r.out;
+
+  // Boundary faces in the plane: the layers' side faces over the cut and the fill's
+  // plane facet. With the body's cut (the disk inside the wall's equator polygon) they
+  // tile the half box's face on the plane.
+  const VolumeMesh m = read_volume_mesh(vtu).mesh;
+  const MeshFaces faces = build_mesh_faces(m);
+  double symmetry_area = 0.0, lo_x = HUGE_VAL, hi_x = -HUGE_VAL, lo_y = HUGE_VAL, hi_y = -HUGE_VAL;
+  int n_quads = 0;
+  for (std::size_t f = faces.n_internal; f < faces.size(); ++f) {
+    bool in_plane = true;
+    for (int k = 0; k < faces.n_nodes[f]; ++k) in_plane = in_plane && m.points[faces.nodes[f][k]][2] == 0.0;
+    if (!in_plane) continue;
+    symmetry_area += area_in_z0(m, faces.nodes[f], faces.n_nodes[f]);
+    n_quads += faces.n_nodes[f] == 4;
+    for (int k = 0; k < faces.n_nodes[f]; ++k) {
+      const Vec3& p = m.points[faces.nodes[f][k]];
+      lo_x = std::min(lo_x, p[0]);
+      hi_x = std::max(hi_x, p[0]);
+      lo_y = std::min(lo_y, p[1]);
+      hi_y = std::max(hi_y, p[1]);
+    }
+  }
+  EXPECT_EQ(n_quads, 20 * 3) << "the layers' side quads over the 20 cut edges, 3 layers";
+  // The cut: the regular 20-gon of radius 1 (the wall's equator).
+  const double cut = 0.5 * 20 * std::sin(2 * M_PI / 20);
+  const double box = (hi_x - lo_x) * (hi_y - lo_y);
+  EXPECT_NEAR(symmetry_area + cut, box, 1e-9 * box);
+
+  // The solver formats carry the symmetry patch; checkMesh accepts the mesh.
+  const std::string case_dir = dir.file("case");
+  const auto o = run_blayer("extrude " + surface + " --layers 3 --first-height 0.01 --growth-ratio 1.2 --fill "
+                            "--farfield-scale 4 -o " + case_dir + "/constant/polyMesh",
+                            dir.file(""));
+  ASSERT_EQ(o.status, 0) << o.out << o.err;
+  std::ifstream boundary(case_dir + "/constant/polyMesh/boundary");
+  std::stringstream text;
+  text << boundary.rdbuf();
+  EXPECT_NE(text.str().find("symmetry"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("symmetryPlane"), std::string::npos) << text.str();
+  const testing::ToolRun run = testing::run_check_mesh(case_dir);
+  ASSERT_EQ(run.exit_code, 0) << testing::describe_failure(run, "checkMesh", "openfoam");
+  EXPECT_NE(run.output.find("Mesh OK."), std::string::npos) << run.output;
+  EXPECT_GT(testing::check_mesh_patches(run.output)["symmetry"], 0);
+}
+
+}  // namespace
+}  // namespace blayer
