@@ -71,7 +71,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   const WallTopology topo = build_wall_topology(wall, params.symmetry);
   const WallPlanes planes(wall, topo);
   StepDirections dirs = compute_step_directions(wall, topo, topo.used, params);
-  FrontChecker checker(wall, topo, params.check_collisions);
+  FrontChecker checker(wall, topo, params);
   ColumnPlan plan = plan_column_heights(wall, topo, rep.growth, params, dirs, checker.wall_rays());
   ColumnState columns = ColumnState::on_wall(wall.points, topo.used);
   LayerAssembler assembler(wall, dirs);

@@ -20,7 +20,15 @@ VertexNormal finish(const FanGeometry& g, const Vec3& n, NormalStatus status) {
 }  // namespace
 
 VertexNormal compute_vertex_normal(const FanGeometry& g, NormalMethod method, const Tolerances& tol) {
+  return compute_vertex_normal(g, method, tol, nullptr, nullptr);
+}
+
+VertexNormal compute_vertex_normal(const FanGeometry& g, NormalMethod method, const Tolerances& tol,
+                                   MostNormalWarmStart* warm, bool* hit) {
+  if (hit) *hit = false;
   const bool weighted = method != NormalMethod::kMostNormal && method != NormalMethod::kMostVisible;
+  const bool most_normal = method == NormalMethod::kMostNormal && g.n_faces() > 0 && !g.any_degenerate && g.closed;
+  if (warm && !most_normal) *warm = MostNormalWarmStart{};
   if (g.n_faces() == 0) return finish(g, Vec3{0.0, 0.0, 0.0}, NormalStatus::kDegenerateFan);
   if (g.any_degenerate) {
     return finish(g, weighted_average_normal(g, NormalMethod::kAngle), NormalStatus::kDegenerateFan);
@@ -40,7 +48,7 @@ VertexNormal compute_vertex_normal(const FanGeometry& g, NormalMethod method, co
                             : (g.closed ? NormalStatus::kOk : NormalStatus::kBoundary);
     return r;
   }
-  const MostNormalResult mn = most_normal_normal(g, tol);
+  const MostNormalResult mn = warm ? most_normal_normal(g, warm, hit, tol) : most_normal_normal(g, tol);
   VertexNormal r;
   r.normal = mn.normal;
   r.visibility = mn.visibility;

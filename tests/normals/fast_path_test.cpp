@@ -1,5 +1,6 @@
-// The most-normal shortcuts against the plain candidate enumeration
-// (most_normal_by_enumeration) on the fans they are meant for: convex corners and
+// The shortcuts of the pruned enumeration (most_normal_by_pruned_enumeration, the
+// previous default) against the plain candidate enumeration (most_normal_by_enumeration)
+// on the fans they are meant for: convex corners and
 // vertices of smoothly convex, nearly developable surfaces (wing skins), where some
 // junctions are not reflex yet D* > pi/2, plus the generic random shapes, where the
 // shortcut must stay out of the way.
@@ -14,20 +15,9 @@
 namespace blayer {
 namespace {
 
-
 // A candidate within normality_tie of the optimum lies within tie / kSharpFalloff of it
 // (most_normal.cpp): the two answers may differ by that much in direction, no more.
 constexpr double kSameDirection = 1e-7;
-
-// Vertex of z = -(k1 x^2 + k2 y^2) / 2 with a jittered ring: k2 near 0 gives the
-// spanwise flatness of a wing, where rounding of the mesh makes some edges concave.
-std::vector<Vec3> skin_fan(std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const int k = 4 + static_cast<int>(u(rng) * 6);
-  const double k1 = 0.05 + u(rng), k2 = 1e-3 * u(rng);
-  const double jitter = 1e-3 * u(rng);
-  return testing_fans::quadric_fan(rng, k, k1, k2, jitter);
-}
 
 bool all_junctions_reflex(const FanGeometry& g) {
   const int k = g.n_faces();
@@ -39,7 +29,7 @@ bool all_junctions_reflex(const FanGeometry& g) {
 
 // Compares the two solvers on one fan; returns whether the shortcut answered.
 bool expect_same(const FanGeometry& g, bool constrained, const std::string& what) {
-  const MostNormalResult fast = most_normal_normal(g, default_tolerances(), constrained);
+  const MostNormalResult fast = most_normal_by_pruned_enumeration(g, default_tolerances(), constrained);
   const MostNormalResult full = most_normal_by_enumeration(g, default_tolerances(), constrained);
   EXPECT_EQ(fast.status, full.status) << what;
   EXPECT_NEAR(fast.normality, full.normality, default_tolerances().normality_tie) << what;
@@ -55,7 +45,7 @@ TEST(MostNormalShortcut, MatchesEnumerationOnConvexSkins) {
   std::mt19937 rng(2024);
   int shortcut_not_all_reflex = 0, n = 0;
   for (int t = 0; t < 3000; ++t) {
-    const FanGeometry g = testing_fans::geometry(skin_fan(rng));
+    const FanGeometry g = testing_fans::geometry(testing_fans::skin_fan(rng));
     if (g.any_degenerate) continue;
     ++n;
     for (bool constrained : {false, true}) {

@@ -1,6 +1,6 @@
-// The most-normal solver with its enumeration pruning (the great-circle screen of the
-// point-point-arc and point-arc-arc families) against the unpruned enumeration
-// (most_normal_by_enumeration) on nearly flat fans: wing-skin vertices where a few
+// The pruned enumeration (most_normal_by_pruned_enumeration, the previous default: the
+// great-circle screen of the point-point-arc and point-arc-arc families) against the
+// unpruned enumeration (most_normal_by_enumeration) on nearly flat fans: wing-skin vertices where a few
 // junctions are reflex and D* is close to 90 degrees, the fans the screen is for, plus
 // the generic random shapes. The pruning discards only candidates the evaluation would
 // reject, so the answers agree to rounding.
@@ -18,27 +18,15 @@ namespace {
 
 using testing_fans::Shape;
 
-// The bound shortcut (taken by most_normal_normal only, where D* reaches the link-vertex
+// The bound shortcut (taken by the pruned enumeration only, where D* reaches the link-vertex
 // bound, i.e. D* >= 90 degrees) answers within normality_tie and kSameDirection of the
 // enumeration (fast_path_test.cpp); below 90 degrees only the pruning differs, and the
 // two agree to rounding.
 constexpr double kSameNormality = 1e-12;
 constexpr double kSameDirection = 1e-7;
 
-// Vertex of z = -(k1 x^2 + k2 y^2) / 2 plus jitter, k2 of either sign and small: the
-// spanwise-flat, slightly saddle-shaped wing skin with mesh noise that makes some
-// junctions reflex. scale shrinks the curvature towards an exactly flat fan.
-std::vector<Vec3> near_flat_fan(std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const int k = 4 + static_cast<int>(u(rng) * 7);
-  const double scale = std::pow(10.0, -4.0 * u(rng));
-  const double k1 = scale * (u(rng) - 0.3), k2 = scale * 1e-2 * (u(rng) - 0.5);
-  const double jitter = scale * 1e-2 * u(rng);
-  return testing_fans::quadric_fan(rng, k, k1, k2, jitter);
-}
-
 void expect_same(const FanGeometry& g, bool constrained, const std::string& what) {
-  const MostNormalResult pruned = most_normal_normal(g, default_tolerances(), constrained);
+  const MostNormalResult pruned = most_normal_by_pruned_enumeration(g, default_tolerances(), constrained);
   const MostNormalResult full = most_normal_by_enumeration(g, default_tolerances(), constrained);
   ASSERT_EQ(pruned.status, full.status) << what;
   const bool shortcut_reach = full.normality >= 0.5 * M_PI - default_tolerances().normality_tie;
@@ -55,7 +43,7 @@ TEST(MostNormalPruning, MatchesEnumerationOnNearFlatFans) {
   std::mt19937 rng(4711);
   int n = 0, below_right_angle = 0;
   for (int t = 0; t < 6000; ++t) {
-    const FanGeometry g = testing_fans::geometry(near_flat_fan(rng));
+    const FanGeometry g = testing_fans::geometry(testing_fans::near_flat_fan(rng));
     if (g.any_degenerate) continue;
     ++n;
     for (bool constrained : {false, true}) expect_same(g, constrained, "near-flat fan " + std::to_string(t));

@@ -93,5 +93,27 @@ inline std::vector<Vec3> quadric_fan(std::mt19937& rng, int k, double k1, double
   return ring;
 }
 
+// Vertex of z = -(k1 x^2 + k2 y^2) / 2 plus jitter, k2 of either sign and small: the
+// spanwise-flat, slightly saddle-shaped wing skin with mesh noise that makes some
+// junctions reflex. A random scale shrinks the curvature towards an exactly flat fan.
+inline std::vector<Vec3> near_flat_fan(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int k = 4 + static_cast<int>(u(rng) * 7);
+  const double scale = std::pow(10.0, -4.0 * u(rng));
+  const double k1 = scale * (u(rng) - 0.3), k2 = scale * 1e-2 * (u(rng) - 0.5);
+  const double jitter = scale * 1e-2 * u(rng);
+  return quadric_fan(rng, k, k1, k2, jitter);
+}
+
+// Vertex of z = -(k1 x^2 + k2 y^2) / 2 with a jittered ring: k2 near 0 gives the
+// spanwise flatness of a wing, where rounding of the mesh makes some edges concave.
+inline std::vector<Vec3> skin_fan(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int k = 4 + static_cast<int>(u(rng) * 6);
+  const double k1 = 0.05 + u(rng), k2 = 1e-3 * u(rng);
+  const double jitter = 1e-3 * u(rng);
+  return quadric_fan(rng, k, k1, k2, jitter);
+}
+
 }  // namespace testing_fans
 }  // namespace blayer

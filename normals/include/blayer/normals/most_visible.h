@@ -42,6 +42,15 @@ MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k,
 // O(k^4); used when no visible direction exists.
 MostVisibleResult best_margin_direction(const Vec3* f, int k);
 
+// Wolfe's algorithm alone: kCertified with the certified min-norm point in *out (whose
+// evaluated V may still fall below tol.min_visibility by rounding: out->feasible), or
+// kNoVisibleDirection (V* below tol.min_visibility, or 0 in conv{f_i}), or kUncertified
+// (a singular affine hull from rounding, or no convergence within its step limit),
+// leaving *out unspecified. most_visible_normal is this plus its fallbacks, whose cost
+// grows as k^4; callers that only profit from a certified answer skip them.
+enum class WolfeOutcome { kCertified, kNoVisibleDirection, kUncertified };
+WolfeOutcome wolfe_min_norm_point(const Vec3* f, int k, const Tolerances& tol, MostVisibleResult* out);
+
 inline MostVisibleResult most_visible_normal(const std::vector<Vec3>& f,
                                              const Tolerances& tol = default_tolerances()) {
   return most_visible_normal(f.data(), static_cast<int>(f.size()), tol);

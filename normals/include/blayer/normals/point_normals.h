@@ -50,4 +50,24 @@ struct PointNormals {
 PointNormals compute_point_normals(const TriSurface& s, const VertexFans& fans, NormalMethod method,
                                    const Tolerances& tol = default_tolerances());
 
+struct MostNormalWarmStart;  // most_normal.h
+
+// What the warm starts of one compute_point_normals call did (most-normal only).
+struct WarmStartCounts {
+  long warm = 0;  // points whose warm start was valid on entry
+  long hits = 0;  // of those, points whose certificate held (the rebuilt optimum stood)
+  double hit_rate() const { return warm > 0 ? static_cast<double>(hits) / static_cast<double>(warm) : 0.0; }
+};
+
+// The same, warm-started across the fronts of one surface (same points and triangles,
+// the points moved): *warm holds one MostNormalWarmStart per point (most_normal.h),
+// resized to the point count if shorter; on return it describes these normals, ready
+// for the next front. Start with an empty vector. The normals are those of the call
+// without warm starts (ties aside, see most_normal.h); only the most-normal method
+// uses them, the others leave *warm empty of valid entries. *counts (optional) receives
+// the hit rate.
+PointNormals compute_point_normals(const TriSurface& s, const VertexFans& fans, NormalMethod method,
+                                   const Tolerances& tol, std::vector<MostNormalWarmStart>* warm,
+                                   WarmStartCounts* counts = nullptr);
+
 }  // namespace blayer

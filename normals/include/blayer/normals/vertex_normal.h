@@ -17,6 +17,7 @@
 #pragma once
 
 #include "blayer/normals/fan_geometry.h"
+#include "blayer/normals/most_normal.h"
 #include "blayer/normals/point_normals.h"
 
 namespace blayer {
@@ -30,5 +31,11 @@ struct VertexNormal {
 
 VertexNormal compute_vertex_normal(const FanGeometry& g, NormalMethod method,
                                    const Tolerances& tol = default_tolerances());
+
+// The same with a most-normal warm start (most_normal.h): *warm in and out, *hit
+// (optional) whether its certificate held. Methods other than most-normal, and every
+// fallback, leave *warm invalid.
+VertexNormal compute_vertex_normal(const FanGeometry& g, NormalMethod method, const Tolerances& tol,
+                                   MostNormalWarmStart* warm, bool* hit = nullptr);
 
 }  // namespace blayer

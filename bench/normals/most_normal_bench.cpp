@@ -1,0 +1,150 @@
+// most_normal_bench [google benchmark flags] [surface ...]
+// Google Benchmark figures of the most-normal solvers, all in one run (the machine is
+// shared: compare ratios within a run):
+//   ByValence/<solver>/<k>   generated fans of valence k (6: convex, saddle and near-flat
+//                            wing-skin vertices with mesh jitter; 12-60: CAD-like fans,
+//                            tests/normals/cad_fans.h, with offsets of 1e-5 and 1e-3 of
+//                            the edge length)
+//   Mesh/<solver>/<surface>/<wall|front>
+//                            every closed vertex of the surface, and of its first offset
+//                            front (bench/normals/front_march.h)
+// for solver = default (most_normal_normal), pruned (the previous default,
+// most_normal_by_pruned_enumeration) and, up to valence 20, enumeration (the oracle).
+// One thread; fan geometries are built before timing, so items/s counts vertex solves
+// per second per core. Mesh benchmarks of the default solver also report max_vertex_us:
+// the longest single vertex solve, each vertex timed three times and its fastest kept (a
+// single reading is often a preemption of the shared machine).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "blayer/io/prepare_surface.h"
+#include "blayer/normals/most_normal.h"
+#include "cad_fans.h"
+#include "front_march.h"
+#include "random_fans.h"
+#include "test_fans.h"
+
+namespace {
+
+using namespace blayer;
+
+enum class Solver { kDefault, kPruned, kEnumeration };
+
+MostNormalResult solve(Solver s, const FanGeometry& g) {
+  switch (s) {
+    case Solver::kDefault: return most_normal_normal(g);
+    case Solver::kPruned: return most_normal_by_pruned_enumeration(g);
+    case Solver::kEnumeration: return most_normal_by_enumeration(g);
+  }
+  return {};
+}
+
+const char* solver_name(Solver s) {
+  switch (s) {
+    case Solver::kDefault: return "default";
+    case Solver::kPruned: return "pruned";
+    case Solver::kEnumeration: return "enumeration";
+  }
+  return "";
+}
+
+std::vector<FanGeometry> fans_of_valence(int k) {
+  std::vector<FanGeometry> fans;
+  std::mt19937 rng(4242u + static_cast<unsigned>(k));
+  for (int t = 0; fans.size() < 64 && t < 1000; ++t) {
+    std::vector<Vec3> ring;
+    if (k <= 6) {
+      // Wing skins: convex, saddle and near-flat quadric vertices with mesh jitter.
+      std::uniform_real_distribution<double> u(0.0, 1.0);
+      const double k1 = t % 3 == 0 ? 0.05 + u(rng) : 1e-3 * (u(rng) - 0.3);
+      const double k2 = t % 3 == 1 ? -0.5 * u(rng) : 1e-3 * (u(rng) - 0.5);
+      ring = testing_fans::quadric_fan(rng, k, k1, k2, 1e-3 * u(rng));
+    } else {
+      ring = testing_fans::cad_like_fan(rng, static_cast<testing_fans::CadShape>(t % 4), k, t % 3 == 0 ? 1e-5 : 1e-3);
+    }
+    FanGeometry g = testing_fans::geometry(ring);
+    if (!g.any_degenerate) fans.push_back(std::move(g));
+  }
+  return fans;
+}
+
+void by_valence(benchmark::State& state, Solver solver, int k) {
+  const std::vector<FanGeometry> fans = fans_of_valence(k);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(solve(solver, fans[i]));
+    if (++i == fans.size()) i = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+double longest_vertex_us(Solver solver, const std::vector<FanGeometry>& fans) {
+  double worst = 0.0;
+  for (const FanGeometry& g : fans) {
+    double best = 1e300;
+    for (int rep = 0; rep < 3; ++rep) {
+      const auto t0 = std::chrono::steady_clock::now();
+      benchmark::DoNotOptimize(solve(solver, g));
+      best = std::min(best, std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count());
+    }
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+void whole_mesh(benchmark::State& state, Solver solver, const std::vector<FanGeometry>* fans) {
+  for (auto _ : state)
+    for (const FanGeometry& g : *fans) benchmark::DoNotOptimize(solve(solver, g));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(fans->size()));
+  // Three more passes: affordable for the default solver only (the baseline needs 76 s
+  // per pass on the sliver wing's front).
+  if (solver == Solver::kDefault) state.counters["max_vertex_us"] = longest_vertex_us(solver, *fans);
+}
+
+std::vector<FanGeometry> closed_fans(const bench::FrontMarch& m) {
+  std::vector<FanGeometry> fans;
+  FanGeometry g;
+  for (std::size_t v = 0; v < m.surface.points.size(); ++v)
+    if (m.closed_fan(v, &g)) fans.push_back(g);
+  return fans;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  for (int k : {6, 12, 20, 40, 60})
+    for (Solver s : {Solver::kDefault, Solver::kPruned, Solver::kEnumeration}) {
+      if (s == Solver::kEnumeration && k > 20) continue;
+      benchmark::RegisterBenchmark(("ByValence/" + std::string(solver_name(s)) + "/" + std::to_string(k)).c_str(),
+                                   by_valence, s, k);
+    }
+  // Surfaces given after the benchmark flags; their fans live until the run ends.
+  std::vector<std::vector<FanGeometry>*> keep;
+  for (int i = 1; i < argc; ++i) {
+    const std::string path = argv[i];
+    const std::string name = path.substr(path.find_last_of('/') + 1);
+    bench::FrontMarch march(load_surface(path, {}).surface);
+    auto* wall = new std::vector<FanGeometry>(closed_fans(march));
+    march.advance();
+    auto* front = new std::vector<FanGeometry>(closed_fans(march));
+    keep.push_back(wall);
+    keep.push_back(front);
+    for (Solver s : {Solver::kDefault, Solver::kPruned})
+      for (auto [label, fans] : {std::pair<const char*, std::vector<FanGeometry>*>{"wall", wall}, {"front", front}})
+        benchmark::RegisterBenchmark(("Mesh/" + std::string(solver_name(s)) + "/" + name + "/" + label).c_str(),
+                                     whole_mesh, s, fans)
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(1);
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  for (auto* f : keep) delete f;
+  return 0;
+}

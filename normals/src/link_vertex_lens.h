@@ -1,0 +1,23 @@
+// Where the link-vertex bound can still reach a threshold above 90 degrees. Every link
+// vertex u_j lies on the link, so D(n) <= g(n) = min_j angle(n, u_j); for thr > pi/2
+// the set L = {g >= thr} is the intersection of the caps of radius pi - thr < pi/2
+// around the -u_j, hence convex, and every direction with D >= thr lies in it. For the
+// cap antipode n0 (the maximiser of g) this bounds L by a cap around n0: on convex
+// corners and smoothly convex skins, a tiny one. Internal to blayer_normals.
+#pragma once
+
+#include <vector>
+
+#include "blayer/core/vec3.h"
+
+namespace blayer {
+namespace detail {
+
+// The smallest radius r of the schedule 1e-7 * 4^m (m = 0, 1, ...), up to max_radius,
+// for which the circle {angle(n, centre) = r} is proved disjoint from L, so that
+// L lies in B(centre, r). Preconditions: thr > pi/2, g(centre) >= thr, unit dirs.
+// Returns a negative value when no such r <= max_radius is found.
+double link_vertex_lens_radius(const std::vector<Vec3>& dirs, const Vec3& centre, double thr, double max_radius);
+
+}  // namespace detail
+}  // namespace blayer

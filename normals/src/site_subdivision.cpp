@@ -1,0 +1,397 @@
+#include "site_subdivision.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "candidate_families.h"
+
+namespace blayer {
+namespace detail {
+
+namespace {
+
+// A cell becomes a leaf when at most this many sites can be nearest in it: its
+// enumeration is then a handful of candidates (at most two triples' worth).
+constexpr int kLeafSites = 3;
+
+// Sites that can be nearest stop shrinking where several are exactly or nearly
+// equidistant (symmetric fans, concentric sites, near-flat skins): a cell with at most
+// kSmallLeaf of them is enumerated as it is once they stayed the same over kStableLevels
+// refinements or the cell is below kSmallLeafRadius. Subsets are enumerated once per
+// solve, so a small leaf costs little when its neighbours share its sites; measured on
+// the public meshes (1e-3 against 1e-1 and 1e-2: 20.6 and 21.3 us per near-flat fan
+// against 20.1 for the whole-sphere subdivision).
+constexpr int kSmallLeaf = 6;
+constexpr int kStableLevels = 3;
+constexpr double kSmallLeafRadius = 1e-3;
+
+// Cells smaller than this (radians) are leaves whatever their sites: below the tie
+// tolerance's scale of directions (kDistinctMaximizers = 1e-6), further refinement cannot
+// separate maximisers that matter.
+constexpr double kMinRadius = 1e-8;
+
+// Allowance on every angle bound of a cell (D(c) + rho, V(c) + rho, the reach
+// D(c) + 2 rho): D(c) is computed to ~1e-16 and rho to ~1e-16, so 1e-12 keeps every
+// decision conservative by four orders.
+constexpr double kBoundMargin = 1e-12;
+
+// Allowance on the cosines and sines compared with those bounds (a few ulps of values
+// <= 1).
+constexpr double kTrigMargin = 1e-15;
+
+// Upper bound of the angle between unit vectors at chord t = |a - b|: the angle is
+// 2 asin(t / 2) = t + t^3 / 24 + ..., below t + t^3 / 12 for t <= 1; the relative
+// allowance covers the rounding of t.
+double angle_from_chord(double t) {
+  const double bound = t <= 1.0 ? t + t * t * t / 12.0 : 2.0 * std::asin(std::min(1.0, 0.5 * t));
+  return bound * (1.0 + 1e-14);
+}
+
+// Cosine and sine bounds of an angle, conservative for "cos(angle) >= value" and
+// "|x| <= sin(angle)" tests.
+double cos_bound(double angle) { return angle >= M_PI ? -2.0 : std::cos(angle) - kTrigMargin; }
+double sin_bound(double angle) { return angle >= 0.5 * M_PI ? 2.0 : std::sin(angle) + kTrigMargin; }
+
+// fluid_side_at_vertex without arctangents, for cell centres (a disagreement with it
+// exactly on the wedge boundary does not matter there: such a centre is within
+// rounding of an arc, and its cell is never dropped for its side).
+bool fluid_at_vertex(const FanGeometry& g, int j, const Vec3& n) {
+  const int k = g.n_faces();
+  const Vec3& w = g.dirs[j];
+  const Vec3& prev = g.dirs[(j + k - 1) % k];
+  const Vec3& next = g.dirs[(j + 1) % k];
+  const Vec3 t_in = prev - dot(prev, w) * w;
+  const Vec3 t_out = next - dot(next, w) * w;
+  const Vec3 t_n = n - dot(n, w) * w;
+  const Vec3 left = cross(w, t_out);
+  // Counter-clockwise angle from t_out, compared by half-turn, then by orientation.
+  const double sn = dot(left, t_n), cn = dot(t_out, t_n);
+  const double si = dot(left, t_in), ci = dot(t_out, t_in);
+  const int hn = sn < 0.0 ? 1 : 0, hi = si < 0.0 ? 1 : 0;
+  if (hn != hi) return hn < hi;
+  return cn * si - sn * ci > 0.0;
+}
+
+}  // namespace
+
+SiteSubdivision::SiteSubdivision(const FanSites& sites, CandidatePool* pool)
+    : s_(sites), pool_(*pool), g_(pool->geometry()), k_(pool->geometry().n_faces()) {
+  lune1_.resize(k_);
+  lune2_.resize(k_);
+  for (int i = 0; i < k_; ++i) {
+    // Foot inside arc i: (u x m).f >= 0 and (m x v).f >= 0 with m = n - (n.f) f, i.e.
+    // n.(f x u) >= 0 and n.(v x f) >= 0.
+    lune1_[i] = normalized(cross(g_.face_normals[i], g_.arc_start(i)));
+    lune2_[i] = normalized(cross(g_.arc_end(i), g_.face_normals[i]));
+  }
+  const int na = static_cast<int>(s_.arcs.size());
+  merged_lune1_.resize(na);
+  merged_lune2_.resize(na);
+  for (int m = 0; m < na; ++m) {
+    merged_lune1_[m] = normalized(cross(s_.arcs[m].g, s_.arcs[m].u));
+    merged_lune2_[m] = normalized(cross(s_.arcs[m].v, s_.arcs[m].g));
+  }
+  arc_cos_.resize(k_);
+  n_points_ = static_cast<int>(s_.points.size());
+  point_stamp_.assign(s_.points.size(), 0);
+  arc_stamp_.assign(na, 0);
+}
+
+SiteSubdivision::Cell SiteSubdivision::make_cell(int chart, double x0, double y0, double size) const {
+  const Chart& ch = charts_[chart];
+  auto direction = [&](double x, double y) { return normalized(ch.e0 + x * ch.e1 + y * ch.e2); };
+  Cell cell{chart, x0, y0, size, direction(x0 + 0.5 * size, y0 + 0.5 * size), 0.0};
+  // The cell is the central projection of a square, a convex spherical quadrangle within
+  // 90 degrees of its centre, where the distance to the centre is convex: its farthest
+  // points are corners.
+  double chord = 0.0;
+  for (double dx : {0.0, size})
+    for (double dy : {0.0, size}) chord = std::max(chord, norm(cell.c - direction(x0 + dx, y0 + dy)));
+  cell.rho = angle_from_chord(chord);
+  return cell;
+}
+
+void SiteSubdivision::unconstrained_candidates() {
+  charts_.clear();
+  for (int face = 0; face < 6; ++face) {
+    const int a = face % 3;
+    const double sign = face < 3 ? 1.0 : -1.0;
+    Chart ch{{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+    ch.e0[a] = sign;
+    ch.e1[(a + 1) % 3] = 1.0;
+    ch.e2[(a + 2) % 3] = 1.0;
+    charts_.push_back(ch);
+  }
+  refine_roots();
+}
+
+void SiteSubdivision::unconstrained_candidates_near(const Vec3& centre, double radius) {
+  Chart ch;
+  ch.e0 = centre;
+  orthonormal_complement(centre, &ch.e1, &ch.e2);
+  charts_.assign(1, ch);
+  // The square of half side tan(radius) holds the disc that is the cap's projection.
+  const double t = std::tan(radius) * (1.0 + 1e-12);
+  arena_.clear();
+  for (int i = 0; i < k_; ++i) arena_.push_back(i);
+  for (int i = 0; i < k_; ++i) arena_.push_back(i);
+  refine(make_cell(0, -t, -t, 2.0 * t), 0, k_, k_, 2 * k_, 0, -1, 0);
+}
+
+void SiteSubdivision::refine_roots() {
+  arena_.clear();
+  for (int i = 0; i < k_; ++i) arena_.push_back(i);
+  for (int i = 0; i < k_; ++i) arena_.push_back(i);
+  for (int chart = 0; chart < static_cast<int>(charts_.size()); ++chart)
+    refine(make_cell(chart, -1.0, -1.0, 2.0), 0, k_, k_, 2 * k_, 0, -1, 0);
+}
+
+void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end,
+                             int depth, int parent_sites, int stable_levels) {
+  ++stats_.cells;
+  stats_.max_depth = std::max(stats_.max_depth, depth);
+  const Vec3& c = cell.c;
+  const double rho = cell.rho;
+
+  // Distance from c to every arc the parent kept, as a cosine; the nearest one exactly.
+  double best_cos = -3.0;
+  int best = -1;
+  for (int t = arcs_begin; t < arcs_end; ++t) {
+    const int i = arena_[t];
+    double cs;
+    if (dot(c, lune1_[i]) >= 0.0 && dot(c, lune2_[i]) >= 0.0) {
+      const double cf = dot(c, g_.face_normals[i]);
+      cs = std::sqrt(std::max(0.0, 1.0 - cf * cf));
+    } else {
+      cs = std::max(dot(c, g_.arc_start(i)), dot(c, g_.arc_end(i)));
+    }
+    arc_cos_[i] = cs;
+    if (cs > best_cos) {
+      best_cos = cs;
+      best = i;
+    }
+  }
+  if (best < 0) return;
+  const Vec3& f = g_.face_normals[best];
+  const double cf = dot(c, f);
+  const bool interior = dot(c, lune1_[best]) >= 0.0 && dot(c, lune2_[best]) >= 0.0;
+  int vertex = -1;
+  double d;
+  if (interior) {
+    d = std::atan2(std::fabs(cf), norm(c - cf * f));
+  } else {
+    const bool at_end = dot(c, g_.arc_end(best)) > dot(c, g_.arc_start(best));
+    vertex = at_end ? (best + 1) % k_ : best;
+    d = angle_between(c, g_.dirs[vertex]);
+  }
+  double v = 2.0;
+  for (int t = faces_begin; t < faces_end; ++t) v = std::min(v, dot(c, g_.face_normals[arena_[t]]));
+
+  const double d_high = d + rho + kBoundMargin;
+  if (d_high < pool_.threshold()) return;
+  const bool maybe_feasible = !pool_.constrained() || v + rho + kBoundMargin >= pool_.v_min() - kConstraintSlack;
+  if (!maybe_feasible && d_high < pool_.unconstrained_threshold()) return;
+  if (d > rho + kBoundMargin) {
+    // No arc meets the cap: the whole cell lies on the side of its centre.
+    const bool fluid = interior ? cf > 0.0 : fluid_at_vertex(g_, vertex, c);
+    if (!fluid) return;
+  }
+
+  const double cos_reach = cos_bound(d + 2.0 * rho + kBoundMargin);
+  const int own_arcs = static_cast<int>(arena_.size());
+  for (int t = arcs_begin; t < arcs_end; ++t)
+    if (arc_cos_[arena_[t]] >= cos_reach) arena_.push_back(arena_[t]);
+  const int own_faces = static_cast<int>(arena_.size());
+  const double v_reach = v + 2.0 * rho + kBoundMargin;
+  for (int t = faces_begin; t < faces_end; ++t)
+    if (dot(c, g_.face_normals[arena_[t]]) <= v_reach) arena_.push_back(arena_[t]);
+  const int own_end = static_cast<int>(arena_.size());
+
+  // The sites that can be nearest in the cell: reflex ends of the kept arcs within
+  // reach, and merged arcs whose foot-inside lune meets the cap. A generator s of a
+  // candidate that can still become a maximiser has d_s = D >= thr there, and an arc's
+  // interior is at arcsin|n.g| <= arcsin(|c.g| + rho) in the cell: arcs whose circle
+  // passes nearer cannot generate one (none can above 90 degrees).
+  ++stamp_;
+  leaf_points_.clear();
+  leaf_arcs_.clear();
+  const double lune_reach = -sin_bound(rho + kBoundMargin);
+  const double thr = pool_.threshold() - kBoundMargin;
+  const double arc_reach = thr <= 0.0 ? -1.0 : (thr > 0.5 * M_PI ? 3.0 : std::sin(thr) - rho - kBoundMargin);
+  for (int t = own_arcs; t < own_faces; ++t) {
+    const int i = arena_[t];
+    for (int j : {i, (i + 1) % k_}) {
+      const int p = s_.point_of_vertex[j];
+      if (p < 0 || point_stamp_[p] == stamp_) continue;
+      point_stamp_[p] = stamp_;
+      if (dot(c, g_.dirs[j]) >= cos_reach) leaf_points_.push_back(p);
+    }
+    const int m = s_.arc_of_face[i];
+    if (arc_stamp_[m] == stamp_) continue;
+    arc_stamp_[m] = stamp_;
+    if (dot(c, merged_lune1_[m]) >= lune_reach && dot(c, merged_lune2_[m]) >= lune_reach &&
+        std::fabs(dot(c, s_.arcs[m].g)) >= arc_reach)
+      leaf_arcs_.push_back(m);
+  }
+  const int n_sites = static_cast<int>(leaf_points_.size() + leaf_arcs_.size());
+  const int stable = n_sites == parent_sites ? stable_levels + 1 : 0;
+  if (n_sites <= kLeafSites || rho < kMinRadius || (n_sites <= kSmallLeaf && stable >= kStableLevels) ||
+      (n_sites <= kSmallLeaf && rho < kSmallLeafRadius)) {
+    record_leaf(cell, d, v, own_faces, own_end);
+    enumerate_new_subsets();
+  } else {
+    const double half = 0.5 * cell.size;
+    for (double dx : {0.0, half})
+      for (double dy : {0.0, half})
+        refine(make_cell(cell.chart, cell.x0 + dx, cell.y0 + dy, half), own_arcs, own_faces, own_faces, own_end,
+               depth + 1, n_sites, stable);
+  }
+  arena_.resize(own_arcs);
+}
+
+// Site ids: points 0 .. n_points_ - 1, then merged arcs.
+bool SiteSubdivision::first_time(int a, int b, int c) {
+  // Sort the ids (-1 marks an absent one) and probe an open-addressing table.
+  if (a > b) std::swap(a, b);
+  if (b > c) std::swap(b, c);
+  if (a > b) std::swap(a, b);
+  const std::uint64_t key = (std::uint64_t(a + 1) << 42) | (std::uint64_t(b + 1) << 21) | std::uint64_t(c + 1);
+  if (2 * (subset_count_ + 1) > subset_table_.size()) {
+    std::vector<std::uint64_t> old(subset_table_.size() * 2 > 64 ? subset_table_.size() * 2 : 64, 0);
+    old.swap(subset_table_);
+    subset_count_ = 0;
+    for (std::uint64_t k : old)
+      if (k != 0) insert_subset(k);
+  }
+  return insert_subset(key);
+}
+
+bool SiteSubdivision::insert_subset(std::uint64_t key) {
+  const std::size_t mask = subset_table_.size() - 1;
+  std::size_t h = (key * 0x9E3779B97F4A7C15ull) >> 20;
+  for (;; ++h) {
+    std::uint64_t& slot = subset_table_[h & mask];
+    if (slot == key) return false;
+    if (slot == 0) {
+      slot = key;
+      ++subset_count_;
+      return true;
+    }
+  }
+}
+
+// Offers the candidates of every single site, pair and triple of the current cell's
+// sites not enumerated before, wherever they lie (evaluating a candidate outside the
+// cell costs less than building it twice).
+void SiteSubdivision::enumerate_new_subsets() {
+  thread_local std::vector<int> ids;
+  ids.clear();
+  for (int p : leaf_points_) ids.push_back(p);
+  for (int m : leaf_arcs_) ids.push_back(n_points_ + m);
+  const int n = static_cast<int>(ids.size());
+  auto emit = [&](const Vec3& x) { offer_anywhere(x); };
+  int pts[3], arcs[3];
+  auto run = [&](const int* sel, int m) {
+    int np = 0, na = 0;
+    for (int t = 0; t < m; ++t) {
+      if (sel[t] < n_points_) {
+        pts[np++] = sel[t];
+      } else {
+        arcs[na++] = sel[t] - n_points_;
+      }
+    }
+    const SiteSubset sub{pts, np, arcs, na};
+    const ArcReachScreen screen(pool_);
+    if (m <= 2) {
+      pair_candidates(s_, sub, screen, emit);
+    } else {
+      triple_candidates(s_, sub, screen, emit);
+    }
+  };
+  for (int a = 0; a < n; ++a) {
+    if (first_time(ids[a], -1, -1)) run(&ids[a], 1);
+    for (int b = a + 1; b < n; ++b) {
+      const int pair[2] = {ids[a], ids[b]};
+      if (first_time(ids[a], ids[b], -1)) run(pair, 2);
+      for (int c = b + 1; c < n; ++c) {
+        const int triple[3] = {ids[a], ids[b], ids[c]};
+        if (first_time(ids[a], ids[b], ids[c])) run(triple, 3);
+      }
+    }
+  }
+}
+
+void SiteSubdivision::record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end) {
+  Leaf leaf{cell.c, cell.rho, d, v, static_cast<int>(leaf_ids_.size()), 0, 0,
+            static_cast<int>(leaf_points_.size()), static_cast<int>(leaf_arcs_.size()), faces_end - faces_begin};
+  leaf_ids_.insert(leaf_ids_.end(), leaf_points_.begin(), leaf_points_.end());
+  leaf.arcs_begin = static_cast<int>(leaf_ids_.size());
+  leaf_ids_.insert(leaf_ids_.end(), leaf_arcs_.begin(), leaf_arcs_.end());
+  leaf.faces_begin = static_cast<int>(leaf_ids_.size());
+  leaf_ids_.insert(leaf_ids_.end(), arena_.begin() + faces_begin, arena_.begin() + faces_end);
+  leaves_.push_back(leaf);
+  ++stats_.leaves;
+}
+
+// Offers candidate n (unnormalised) if it lies in the leaf and was not offered before.
+void SiteSubdivision::offer(const Leaf& leaf, const Vec3& n) {
+  const double len = norm(n);
+  if (!(len > 0.0) || !std::isfinite(len)) return;
+  if (dot(n, leaf.c) < cos_bound(leaf.rho + kBoundMargin) * len) return;
+  offer_anywhere(n);
+}
+
+// Offers candidate n (unnormalised) wherever it lies.
+void SiteSubdivision::offer_anywhere(const Vec3& n) { pool_.consider(n); }
+
+SiteSubset SiteSubdivision::subset(const Leaf& leaf) const {
+  return {leaf_ids_.data() + leaf.points_begin, leaf.n_points, leaf_ids_.data() + leaf.arcs_begin, leaf.n_arcs};
+}
+
+bool SiteSubdivision::leaf_alive(const Leaf& leaf, bool feasible_only) const {
+  const double d_high = leaf.d + leaf.rho + kBoundMargin;
+  if (d_high < pool_.threshold()) return false;
+  const bool maybe_feasible =
+      !pool_.constrained() || leaf.v + leaf.rho + kBoundMargin >= pool_.v_min() - kConstraintSlack;
+  if (feasible_only) return maybe_feasible;
+  return maybe_feasible || d_high >= pool_.unconstrained_threshold();
+}
+
+void SiteSubdivision::plateau_peaks() {
+  const double tie = pool_.tolerances().normality_tie;
+  const double d_best = pool_.best_constrained();
+  std::vector<PlateauCircle> circles;
+  std::vector<double> ca, cb, cc;
+  for (const Leaf& leaf : leaves_) {
+    if (!leaf_alive(leaf, false)) continue;
+    circles.clear();
+    plateau_circles(s_, subset(leaf), tie, d_best, &circles);
+    auto emit = [&](const Vec3& n) { offer(leaf, n); };
+    for (const PlateauCircle& circ : circles) {
+      if (std::fabs(dot(leaf.c, circ.h) - circ.c0) > leaf.rho + kBoundMargin) continue;
+      plateau_envelope_peaks(g_, circ, leaf_ids_.data() + leaf.faces_begin, leaf.n_faces, leaf.c,
+                             cos_bound(leaf.rho + kBoundMargin), &ca, &cb, &cc, emit);
+    }
+  }
+}
+
+void SiteSubdivision::constraint_circles() {
+  pool_.begin_constrained_pass();
+  const double v_min = pool_.v_min();
+  std::vector<int> crossing;
+  for (const Leaf& leaf : leaves_) {
+    if (!leaf_alive(leaf, true)) continue;
+    crossing.clear();
+    for (int t = 0; t < leaf.n_faces; ++t) {
+      const int i = leaf_ids_[leaf.faces_begin + t];
+      if (std::fabs(dot(leaf.c, g_.face_normals[i]) - v_min) <= leaf.rho + kBoundMargin) crossing.push_back(i);
+    }
+    if (crossing.empty()) continue;
+    auto emit = [&](const Vec3& n) { offer(leaf, n); };
+    constraint_candidates(g_, s_, subset(leaf), crossing.data(), static_cast<int>(crossing.size()), v_min, emit);
+  }
+}
+
+}  // namespace detail
+}  // namespace blayer

@@ -1,0 +1,129 @@
+// The most-normal candidates by an adaptive subdivision of the sphere that localises the
+// generalized Voronoi diagram of the fan's sites (reflex link vertices as points, merged
+// link arcs as great-circle arcs): instead of every 1-, 2- and 3-site candidate of all
+// the sites (O(k^3)), only those of the few sites that can be nearest inside a small
+// cell, in the cells where D can still reach the running threshold.
+//
+// Cells are the squares of gnomonic charts (the six cube faces, or one chart around a
+// given direction), refined as quadtrees; each cell is held in the cap B(c, rho) around
+// its centre c. D and V are 1-Lipschitz in the angle, so on the cell
+//   D <= D(c) + rho,   V <= V(c) + rho,
+// and a site s (distance d_s) can be the nearest one somewhere in the cell only if
+// d_s(c) <= D(c) + 2 rho; a face can give V only if c.f <= V(c) + 2 rho. A cell is
+// dropped when D(c) + rho is below the threshold (or, wholly invisible, below the
+// unconstrained one), or when it lies off the fluid side (D(c) > rho, so the cap meets
+// no arc, and c is not fluid). Otherwise it inherits the parent's surviving sites and
+// faces and is split, until at most kLeafSites sites can be nearest in it, or they stop
+// changing, or the cell is tiny. An arc counts only where its interior can be nearest
+// (the cap meets its foot-inside lune) and can still reach the threshold.
+//
+// Exactness. Every local maximum of D (with or without the constraint V >= V_min) is a
+// candidate of the subset of the sites nearest to it (docs/normals.md, "Why exact"): a
+// point x with D(x) = d_s(x) for its generators s. If x lies in a leaf, each generator
+// s has d_s(c) <= d_s(x) + rho = D(x) + rho <= D(c) + 2 rho, so it survives in the leaf,
+// and the leaf's enumeration of its subsets builds x by the same formula as the full
+// enumeration. A dropped cell holds no fluid point with D above the threshold of its
+// kind, and thresholds only rise. Each subset is enumerated once, in the first leaf
+// that holds it, and its candidates are offered wherever they lie. So every candidate of
+// the full enumeration that is a critical point of D and can become a maximiser is
+// offered; only candidates built from sites that are not nearest to them may be missing,
+// and within the tie of the optimum those lie on ridges or near-plateaus whose genuine
+// maximisers are offered. The leaves are kept for the plateau and constraint-circle
+// passes, which therefore see only the faces and sites of each leaf.
+//
+// Cost: the cells near the superlevel set of the optimum, each O(sites of its parent),
+// plus the candidates of the distinct subsets of the leaves' sites. Internal to
+// blayer_normals.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "candidate_pool.h"
+#include "fan_sites.h"
+
+namespace blayer {
+namespace detail {
+
+struct SubdivisionStats {
+  int cells = 0;
+  int leaves = 0;
+  int max_depth = 0;
+};
+
+class SiteSubdivision {
+ public:
+  SiteSubdivision(const FanSites& sites, CandidatePool* pool);
+
+  // Refines the whole sphere (six cube faces) and offers every leaf's 1-, 2- and 3-site
+  // candidates.
+  void unconstrained_candidates();
+  // The same within the cap B(centre, radius) alone (radius < pi/2), for callers that
+  // have proved that every candidate that can still become a maximiser lies there.
+  void unconstrained_candidates_near(const Vec3& centre, double radius);
+  // Visibility peaks along the plateau circles of the concentric pairs of each leaf.
+  void plateau_peaks();
+  // Candidates on the constraint circles n.f_i = V_min crossing each leaf (puts the
+  // pool in its constrained pass).
+  void constraint_circles();
+
+  const SubdivisionStats& stats() const { return stats_; }
+
+ private:
+  // A gnomonic chart: the direction of (x, y) is e0 + x e1 + y e2.
+  struct Chart {
+    Vec3 e0, e1, e2;
+  };
+  struct Cell {
+    int chart;
+    double x0, y0, size;
+    Vec3 c;
+    double rho;
+  };
+  struct Leaf {
+    Vec3 c;
+    double rho;
+    double d;  // D(c)
+    double v;  // V(c)
+    int points_begin, arcs_begin, faces_begin;  // into leaf_ids_
+    int n_points, n_arcs, n_faces;
+  };
+
+  Cell make_cell(int chart, double x0, double y0, double size) const;
+  void refine_roots();
+  void refine(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
+              int parent_sites, int stable_levels);
+  void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end);
+  void offer(const Leaf& leaf, const Vec3& n);
+  void offer_anywhere(const Vec3& n);
+  bool first_time(int a, int b, int c);
+  bool insert_subset(std::uint64_t key);
+  void enumerate_new_subsets();
+  SiteSubset subset(const Leaf& leaf) const;
+  bool leaf_alive(const Leaf& leaf, bool feasible_only) const;
+
+  const FanSites& s_;
+  CandidatePool& pool_;
+  const FanGeometry& g_;
+  const int k_;
+  std::vector<Chart> charts_;
+  // Per fan arc: the normals of its foot-inside lune {n.a1 >= 0, n.a2 >= 0}; per merged
+  // arc, the same for the merged arc.
+  std::vector<Vec3> lune1_, lune2_, merged_lune1_, merged_lune2_;
+  std::vector<int> arena_;  // active fan arcs and faces of the cells on the current path
+  std::vector<double> arc_cos_;  // scratch: cosine of each fan arc's distance at the cell centre
+  std::vector<int> point_stamp_, arc_stamp_;
+  int stamp_ = 0;
+  std::vector<int> leaf_points_, leaf_arcs_;  // scratch of the cell being classified
+  std::vector<Leaf> leaves_;
+  std::vector<int> leaf_ids_;
+  // Sorted site triples (ids + 1, 0 for an absent one) already enumerated, open
+  // addressing.
+  std::vector<std::uint64_t> subset_table_;
+  std::size_t subset_count_ = 0;
+  int n_points_ = 0;
+  SubdivisionStats stats_;
+};
+
+}  // namespace detail
+}  // namespace blayer

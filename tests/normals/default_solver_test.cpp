@@ -1,0 +1,123 @@
+// The default most-normal solver (the link-vertex lens, the screened enumeration of small
+// fans, the subdivision of large ones; most_normal.h) against the unpruned enumeration
+// (most_normal_by_enumeration) on the public fans, thousands of random fans of every
+// shape, near-flat wing skins, convex skins and CAD-like fans with and without offsets,
+// with and without the visibility constraint (agreement rule: agreement.h).
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+#include "agreement_test_support.h"
+#include "blayer/normals/most_normal.h"
+#include "cad_fans.h"
+#include "random_fans.h"
+#include "test_fans.h"
+
+namespace blayer {
+namespace {
+
+using testing_fans::CadShape;
+using testing_fans::Shape;
+
+// Which passes answered, from the diagnostics: the subdivision visits cells; without
+// cells the screened enumeration (or MN = MV) did.
+struct Paths {
+  int subdivided = 0;
+  int enumerated = 0;
+};
+
+void expect_same(const FanGeometry& g, const std::string& what, Paths* paths = nullptr) {
+  for (bool constrained : {true, false}) {
+    const MostNormalResult a = most_normal_normal(g, default_tolerances(), constrained);
+    const MostNormalResult b = most_normal_by_enumeration(g, default_tolerances(), constrained);
+    EXPECT_TRUE(testing_fans::same_optimum(g, constrained, a, b)) << what << (constrained ? " constrained" : " free");
+    if (paths && constrained) (a.n_cells > 0 ? paths->subdivided : paths->enumerated) += 1;
+  }
+}
+
+TEST(DefaultMostNormal, MatchesEnumerationOnPublicFans) {
+  for (const testing_fans::TestFan& f : testing_fans::public_fans()) expect_same(testing_fans::geometry(f.ring), f.name);
+}
+
+TEST(DefaultMostNormal, MatchesEnumerationOnRandomShapes) {
+  for (Shape shape : {Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kSliver, Shape::kWild}) {
+    std::mt19937 rng(5150u + static_cast<unsigned>(shape));
+    int n = 0;
+    for (int t = 0; t < 400; ++t) {
+      const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, shape));
+      if (g.any_degenerate) continue;
+      ++n;
+      expect_same(g, std::string(testing_fans::shape_name(shape)) + " fan " + std::to_string(t));
+    }
+    EXPECT_GT(n, 350) << testing_fans::shape_name(shape);
+  }
+}
+
+TEST(DefaultMostNormal, MatchesEnumerationOnNearFlatAndConvexSkins) {
+  std::mt19937 rng(8086);
+  int n = 0;
+  for (int t = 0; t < 3000; ++t) {
+    const FanGeometry flat = testing_fans::geometry(testing_fans::near_flat_fan(rng));
+    if (!flat.any_degenerate) expect_same(flat, "near-flat fan " + std::to_string(t));
+    const FanGeometry skin = testing_fans::geometry(testing_fans::skin_fan(rng));
+    if (!skin.any_degenerate) expect_same(skin, "skin fan " + std::to_string(t));
+    n += (flat.any_degenerate ? 0 : 1) + (skin.any_degenerate ? 0 : 1);
+  }
+  EXPECT_GT(n, 5000);
+}
+
+// CAD-like fans of valence 12-24 (the enumeration is O(k^3): larger ones are compared in
+// bench/normals/most_normal_agreement --cad): exact planes (merged arcs, plateaus) and
+// offsets of 1e-5 and 1e-3 of the edge length.
+TEST(DefaultMostNormal, MatchesEnumerationOnCadLikeFans) {
+  std::mt19937 rng(1969);
+  Paths paths;
+  int n = 0;
+  for (int valence : {12, 16, 20, 24})
+    for (double offset : {0.0, 1e-5, 1e-3})
+      for (CadShape shape : {CadShape::kRidge, CadShape::kCorner, CadShape::kRim, CadShape::kSliver})
+        for (int t = 0; t < 6; ++t) {
+          const FanGeometry g = testing_fans::geometry(testing_fans::cad_like_fan(rng, shape, valence, offset));
+          if (g.any_degenerate) continue;
+          ++n;
+          expect_same(g,
+                      std::string(testing_fans::cad_shape_name(shape)) + " k " + std::to_string(valence) +
+                          " offset " + std::to_string(offset) + " #" + std::to_string(t),
+                      &paths);
+        }
+  EXPECT_GT(n, 250);
+  // Both passes of the default solver must have been exercised.
+  EXPECT_GT(paths.subdivided, 50);
+  EXPECT_GT(paths.enumerated, 20);
+}
+
+// The agreement rule may excuse a status difference only by maximisers that are not
+// genuine; the check must accept every unique optimum of the enumeration...
+TEST(AgreementRule, EveryUniqueEnumeratedOptimumIsGenuine) {
+  std::mt19937 rng(31337);
+  int n = 0;
+  for (Shape shape : {Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kWild})
+    for (int t = 0; t < 100; ++t) {
+      const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, shape));
+      if (g.any_degenerate) continue;
+      const MostNormalResult r = most_normal_by_enumeration(g, default_tolerances(), false);
+      if (r.status != NormalStatus::kOk) continue;
+      ++n;
+      EXPECT_TRUE(testing_fans::genuine_maximizer(g, r.normal)) << testing_fans::shape_name(shape) << " " << t;
+    }
+  EXPECT_GT(n, 300);
+}
+
+// ...and reject a point that is not a maximiser: beside T4's plateau (D = 90 deg on the
+// circle y = 0 between the face normals), 1e-3 rad off it, while accepting the plateau.
+TEST(AgreementRule, PointBesideAPlateauIsNotGenuine) {
+  const auto fans = testing_fans::public_fans();
+  const FanGeometry t4 = testing_fans::geometry(fans[3].ring);
+  const Vec3 off_plateau = normalized(Vec3{std::cos(0.3), 1e-3, std::sin(0.3)});
+  EXPECT_FALSE(testing_fans::genuine_maximizer(t4, off_plateau));
+  EXPECT_TRUE(testing_fans::genuine_maximizer(t4, normalized(Vec3{std::cos(0.3), 0.0, std::sin(0.3)})));
+}
+
+}  // namespace
+}  // namespace blayer

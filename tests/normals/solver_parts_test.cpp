@@ -1,0 +1,127 @@
+// The parts of the default most-normal solver on their own (white-box, normals/src):
+// the subdivision over the whole sphere finds the enumeration's optimum on fans of every
+// size, the link-vertex lens holds every sampled direction of its superlevel set, and the
+// lower envelope of V along a plateau circle peaks as high as all pairwise crossings do.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "blayer/normals/most_normal.h"
+#include "blayer/normals/most_visible.h"
+#include "cad_fans.h"
+#include "candidate_families.h"
+#include "candidate_pool.h"
+#include "fan_sites.h"
+#include "link_vertex_lens.h"
+#include "random_fans.h"
+#include "site_subdivision.h"
+#include "test_fans.h"
+
+namespace blayer {
+namespace {
+
+using testing_fans::Shape;
+
+// The whole-sphere subdivision alone (the default solver sends small fans to the
+// screened enumeration instead) reaches the enumeration's optimum D.
+TEST(SiteSubdivision, ReachesTheEnumerationOptimumOnAnyFan) {
+  std::mt19937 rng(99);
+  int n = 0;
+  for (Shape shape : {Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kSliver, Shape::kWild})
+    for (int t = 0; t < 150; ++t) {
+      const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, shape));
+      if (g.any_degenerate) continue;
+      const MostVisibleResult mv = most_visible_normal(g.face_normals);
+      if (!mv.feasible) continue;
+      for (bool constrained : {true, false}) {
+        detail::CandidatePool pool(g, default_tolerances(), constrained, 0.5 * mv.visibility);
+        detail::FanSites sites;
+        detail::build_fan_sites(g, default_tolerances(), &sites);
+        if (sites.points.empty()) continue;
+        pool.consider(mv.normal);
+        detail::SiteSubdivision subdivision(sites, &pool);
+        subdivision.unconstrained_candidates();
+        if (pool.limited()) subdivision.constraint_circles();
+        const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), constrained);
+        ++n;
+        EXPECT_NEAR(pool.best_constrained(), oracle.normality, 1e-12)
+            << testing_fans::shape_name(shape) << " " << t << (constrained ? " constrained" : " free");
+        EXPECT_GE(subdivision.stats().cells, 6);  // every cube face visited
+      }
+    }
+  EXPECT_GT(n, 900);
+}
+
+// Every sampled direction with g(n) = min_j angle(n, u_j) >= thr lies within the lens
+// radius of the cap antipode, for thresholds just above 90 degrees up to the bound.
+TEST(LinkVertexLens, HoldsEverySampledDirectionOfItsRegion) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int checked = 0;
+  for (int t = 0; t < 300; ++t) {
+    const FanGeometry g = testing_fans::geometry(t % 2 ? testing_fans::skin_fan(rng)
+                                                       : testing_fans::random_fan(rng, Shape::kConvex));
+    Tolerances cap_tol = default_tolerances();
+    cap_tol.min_visibility = 1e-12;
+    MostVisibleResult cap;
+    if (wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap) != WolfeOutcome::kCertified) continue;
+    const Vec3 centre = -cap.normal;
+    const double target = M_PI - std::acos(std::min(1.0, cap.visibility));
+    if (target < 0.5 * M_PI + 1e-6) continue;
+    const double thr = 0.5 * M_PI + (target - 0.5 * M_PI) * (0.5 + 0.5 * u(rng));
+    const double radius = detail::link_vertex_lens_radius(g.dirs, centre, thr, 0.5);
+    if (radius < 0.0) continue;
+    ++checked;
+    // Sample a cap of twice the radius (and at least 0.05 rad) around the centre.
+    Vec3 e1, e2;
+    detail::orthonormal_complement(centre, &e1, &e2);
+    const double reach = std::max(2.0 * radius, 0.05);
+    for (int s = 0; s < 4000; ++s) {
+      const double r = reach * std::sqrt(u(rng)), a = 2.0 * M_PI * u(rng);
+      const Vec3 n = normalized(std::cos(r) * centre + std::sin(r) * (std::cos(a) * e1 + std::sin(a) * e2));
+      double gmin = M_PI;
+      for (const Vec3& w : g.dirs) gmin = std::min(gmin, angle_between(n, w));
+      if (gmin >= thr) {
+        ASSERT_LE(angle_between(n, centre), radius) << "fan " << t;
+      }
+    }
+  }
+  EXPECT_GT(checked, 100);
+}
+
+// The envelope sweep emits a point of largest V inside the window, as high as the best
+// of all single peaks and pairwise crossings there.
+TEST(PlateauEnvelope, PeaksAsHighAsAllPairwiseCrossings) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> nd;
+  int n = 0;
+  for (int t = 0; t < 400; ++t) {
+    const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, t % 2 ? Shape::kSaddle : Shape::kWild));
+    const detail::PlateauCircle circle{normalized(Vec3{nd(rng), nd(rng), nd(rng)}), 2.0 * u(rng) - 1.0};
+    const Vec3 centre = normalized(Vec3{nd(rng), nd(rng), nd(rng)});
+    const double cos_radius = std::cos(0.1 + 2.0 * u(rng));
+    std::vector<int> faces(g.n_faces());
+    std::iota(faces.begin(), faces.end(), 0);
+    std::vector<double> ca, cb, cc;
+    double best_all = -2.0, best_envelope = -2.0;
+    auto in_window = [&](const Vec3& x) { return dot(normalized(x), centre) >= cos_radius - 1e-12; };
+    detail::plateau_peaks(g, circle, faces.data(), g.n_faces(), &ca, &cb, &cc, [&](const Vec3& x) {
+      if (in_window(x)) best_all = std::max(best_all, fan_visibility(g, normalized(x)));
+    });
+    detail::plateau_envelope_peaks(g, circle, faces.data(), g.n_faces(), centre, cos_radius, &ca, &cb, &cc,
+                                   [&](const Vec3& x) {
+                                     if (in_window(x)) best_envelope = std::max(best_envelope, fan_visibility(g, normalized(x)));
+                                   });
+    if (best_all < -1.5) continue;
+    ++n;
+    EXPECT_GE(best_envelope, best_all - 1e-12) << "circle " << t;
+  }
+  EXPECT_GT(n, 100);
+}
+
+}  // namespace
+}  // namespace blayer
