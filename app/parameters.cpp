@@ -1,6 +1,7 @@
 #include "parameters.h"
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -294,10 +295,11 @@ ParamValues ParamBinder::resolve() const {
       } else if (node.is_integer()) {
         text = std::to_string(*node.value<std::int64_t>());
       } else if (node.is_floating_point()) {
-        std::ostringstream os;
-        os.precision(17);
-        os << *node.value<double>();
-        text = os.str();
+        // The shortest text that reads back as the same double: 0.8 stays "0.8" in
+        // messages (17 significant digits would quote it as 0.80000000000000004).
+        char buf[64];
+        const auto res = std::to_chars(buf, buf + sizeof buf, *node.value<double>());
+        text.assign(buf, res.ptr);
       } else {
         throw InputError(config + ": key '" + k + "' must be a string, number or boolean");
       }

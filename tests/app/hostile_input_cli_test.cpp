@@ -133,6 +133,8 @@ TEST(HostileInput, OptionsOutOfRangeAreRefusedNamingTheOptionAsTyped) {
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find("case.toml: key 'proximity-safety'"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("proximity_safety"), std::string::npos) << r.err;
+  // The value is quoted as written, not as the 17 digits of the nearest double.
+  EXPECT_NE(r.err.find("(got '0.8')"), std::string::npos) << r.err;
 }
 
 }  // namespace
