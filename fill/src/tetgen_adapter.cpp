@@ -33,7 +33,9 @@ void get_array(const std::string& in, std::size_t& pos, std::vector<T>& v) {
   if (n < 0 || static_cast<std::uint64_t>(n) > (in.size() - pos) / sizeof(T))
     throw std::runtime_error("truncated TetGen result");
   v.resize(static_cast<std::size_t>(n));
-  std::memcpy(v.data(), in.data() + pos, v.size() * sizeof(T));
+  // An empty vector's data() may be null, and memcpy's arguments must not be, even
+  // for zero bytes (UBSan reports it).
+  if (n > 0) std::memcpy(v.data(), in.data() + pos, v.size() * sizeof(T));
   pos += v.size() * sizeof(T);
 }
 
