@@ -33,4 +33,16 @@ cmake --build "$build" -j "$jobs"
 # child that way on purpose and check the signal; ASan's handler would abort instead).
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=1:handle_segv=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$root/scripts/ubsan-suppressions.txt"
-ctest --test-dir "$build" --output-on-failure -j "$jobs" "$@"
+# Left out under the sanitizers (BLAYER_SANITIZE_ALL=1 runs them too):
+#   PointNormals.ParallelRunIsDeterministic: 7.4 minutes alone under ASan+UBSan at -O1
+#   (about 1 minute in the release build), longer than the rest of the suite takes on
+#   two cores (about 6 minutes), so the suite's time was this one test's. It runs the
+#   most-normal solver twice on a 2400-point uv sphere (60-triangle fans at the poles)
+#   and compares the runs; the plain suite checks that agreement, and the solver's code
+#   runs under the sanitizers in the normals' other tests (random, CAD-like and oracle
+#   fans).
+exclude=()
+if [[ "${BLAYER_SANITIZE_ALL:-0}" != 1 ]]; then
+  exclude=(-E '^PointNormals\.ParallelRunIsDeterministic$')
+fi
+ctest --test-dir "$build" --output-on-failure -j "$jobs" "${exclude[@]}" "$@"
