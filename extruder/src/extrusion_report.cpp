@@ -47,41 +47,35 @@ void count_cells(const VolumeMesh& mesh, ExtrusionReport* r) {
       case CellType::kWedge: ++r->n_wedges; break;
       case CellType::kPyramid: ++r->n_pyramids; break;
       case CellType::kTet: ++r->n_tets; break;
-      case CellType::kHex: break;
+      case CellType::kHex: ++r->n_hexes; break;
     }
   }
   r->n_points = static_cast<std::int64_t>(mesh.points.size());
 }
 
-// Heights above the wall (min over incident wall face planes), achieved thickness
-// fractions and stops per reason.
-void summarise_heights(const TriSurface& wall, const WallTopology& topo, const ColumnPlan& plan,
-                       const ColumnState& columns, const VolumeMesh& mesh, ExtrusionReport* r) {
-  const int nv = topo.n_points(), nf = static_cast<int>(wall.triangles.size());
-  std::vector<Vec3> wall_fn(nf);
-  tbb::parallel_for(0, nf, [&](int f) { wall_fn[f] = normalized(triangle_area_vector(wall, wall.triangles[f])); });
-  const Csr& vtri = topo.vertex_triangles;
-  auto height_above = [&](int v, const Vec3& q) {
-    double m = HUGE_VAL;
-    for (const int* f = vtri.begin(v); f != vtri.end(v); ++f) m = std::min(m, dot(q - wall.points[v], wall_fn[*f]));
-    return m;
-  };
-  std::vector<double> column_area(nv, 0.0);
-  for (const Triangle& t : wall.triangles) {
-    const double a = 0.5 * norm(triangle_area_vector(wall, t)) / 3.0;
-    for (int v : t) column_area[v] += a;
+// Heights above the wall (min over each column's wall planes), achieved thickness
+// fractions and stops per reason, over the columns that stand on wall triangles.
+void summarise_heights(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+                       const WallPlanes& planes, const ColumnPlan& plan, const ColumnState& columns,
+                       ExtrusionReport* r) {
+  const int nc = topo.n_points();
+  std::vector<double> column_area(nc, 0.0);
+  for (std::size_t t = 0; t < layout.front.triangles.size(); ++t) {
+    if (layout.wall_face[t] < 0) continue;
+    const double a = 0.5 * norm(triangle_area_vector(wall, wall.triangles[layout.wall_face[t]])) / 3.0;
+    for (int v : layout.front.triangles[t]) column_area[v] += a;
   }
   double total_area = 0.0;
   int n_used = 0;
   RangeAccumulator fh, th, tf;
-  for (int v = 0; v < nv; ++v) {
-    if (!topo.used[v]) continue;
+  for (int v = 0; v < nc; ++v) {
+    if (!topo.used[v] || layout.faceless[v]) continue;
     ++n_used;
     total_area += column_area[v];
-    const double total = columns.layers[v] > 0 ? height_above(v, columns.top[v]) : 0.0;
+    const double total = columns.layers[v] > 0 ? planes.height_above(v, columns.top[v]) : 0.0;
     th.add(total);
     tf.add(total / plan.target_total[v]);
-    if (columns.layers[v] > 0) fh.add(height_above(v, columns.first[v]));
+    if (columns.layers[v] > 0) fh.add(planes.height_above(v, columns.first[v]));
     if (columns.layers[v] == r->growth.layers) ++r->n_complete_columns;
     else ++r->stopped_columns[static_cast<int>(columns.reason[v])];
     if (plan.limit[v] != StopReason::kNone) ++r->limited_columns[static_cast<int>(plan.limit[v])];
@@ -100,15 +94,17 @@ void summarise_heights(const TriSurface& wall, const WallTopology& topo, const C
   r->first_height = fh.result();
   r->total_thickness = th.result();
   r->thickness_fraction = tf.result();
-  (void)mesh;
 }
 
-void summarise_coverage(const TriSurface& wall, const ColumnState& columns, ExtrusionReport* r) {
+void summarise_coverage(const TriSurface& wall, const ColumnLayout& layout, const ColumnState& columns,
+                        ExtrusionReport* r) {
   const int n = r->growth.layers;
   double area = 0.0, area_full = 0.0;
   int n_full = 0;
-  for (const Triangle& t : wall.triangles) {
-    const double a = 0.5 * norm(triangle_area_vector(wall, t));
+  for (std::size_t f = 0; f < layout.front.triangles.size(); ++f) {
+    if (layout.wall_face[f] < 0) continue;
+    const Triangle& t = layout.front.triangles[f];
+    const double a = 0.5 * norm(triangle_area_vector(wall, wall.triangles[layout.wall_face[f]]));
     area += a;
     if (columns.layers[t[0]] == n && columns.layers[t[1]] == n && columns.layers[t[2]] == n) {
       ++n_full;
@@ -132,11 +128,12 @@ std::string percent(double x) {
 
 }  // namespace
 
-void summarise_extrusion(const TriSurface& wall, const WallTopology& topo, const ColumnPlan& plan,
-                         const ColumnState& columns, const VolumeMesh& mesh, ExtrusionReport* r) {
+void summarise_extrusion(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+                         const WallPlanes& planes, const ColumnPlan& plan, const ColumnState& columns,
+                         const VolumeMesh& mesh, ExtrusionReport* r) {
   count_cells(mesh, r);
-  summarise_heights(wall, topo, plan, columns, mesh, r);
-  summarise_coverage(wall, columns, r);
+  summarise_heights(wall, layout, topo, planes, plan, columns, r);
+  summarise_coverage(wall, layout, columns, r);
   if (!r->growth.relative) {
     r->fidelity = measure_layer_fidelity(mesh, wall,
                                          {r->growth.first_height, r->growth.total_thickness, r->growth.layers});

@@ -37,12 +37,23 @@ void unit_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
 }  // namespace
 
 FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions)
+    : FrontChecker(wall, single_column_layout(wall), topo, check_collisions) {}
+
+FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+                           bool check_collisions)
     : triangles_(&wall.triangles),
+      front_(layout.front.triangles),
+      elements_(layout.elements),
+      element_of_triangle_(layout.element_of_triangle),
+      wall_point_(layout.wall_point),
       plane_(topo.plane),
       on_plane_(topo.on_plane),
       wall_points_(&wall.points),
       nv_(static_cast<int>(wall.points.size())),
+      nc_(layout.n_columns()),
       nf_(static_cast<int>(wall.triangles.size())),
+      nt_(static_cast<int>(layout.front.triangles.size())),
+      ne_(static_cast<int>(layout.elements.size())),
       check_collisions_(check_collisions) {
   std::vector<Box> wall_boxes(nf_);
   tbb::parallel_for(0, nf_, [&](int f) {
@@ -51,21 +62,32 @@ FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, boo
   });
   wall_tree_.build(wall_boxes);
   unit_normals(wall.triangles, wall.points, &wall_normal_);
-  cur_tree_ = wall_tree_;
-  new_tree_ = wall_tree_;
-  cur_boxes_.resize(nf_);
-  new_boxes_.resize(nf_);
-  grows_.assign(nv_, 0);
-  prev_grows_.assign(nv_, 0);
-  moved_.assign(nv_, 0);
-  prev_next_.resize(nv_);
-  for (auto* v : {&bad_cell_, &collided_, &tri_moved_, &tri_grows_, &query_}) v->assign(nf_, 0);
+  if (nt_ == nf_ && front_ == wall.triangles) {
+    cur_tree_ = wall_tree_;
+  } else {
+    std::vector<Box> front_boxes(nt_);
+    const std::vector<Vec3>& P = layout.front.points;
+    tbb::parallel_for(0, nt_, [&](int f) {
+      const Triangle& t = front_[f];
+      front_boxes[f] = Box::of_triangle(P[t[0]], P[t[1]], P[t[2]]);
+    });
+    cur_tree_.build(front_boxes);
+  }
+  new_tree_ = cur_tree_;
+  cur_boxes_.resize(nt_);
+  new_boxes_.resize(nt_);
+  grows_.assign(nc_, 0);
+  prev_grows_.assign(nc_, 0);
+  moved_.assign(nc_, 0);
+  prev_next_.resize(nc_);
+  for (auto* v : {&bad_cell_, &elem_moved_}) v->assign(ne_, 0);
+  for (auto* v : {&collided_, &tri_moved_, &tri_grows_, &query_}) v->assign(nt_, 0);
   wall_tris_.resize(nf_);
-  cur_tris_.resize(nf_);
-  new_tris_.resize(nf_);
-  cur_is_wall_.assign(nf_, 0);
+  cur_tris_.resize(nt_);
+  new_tris_.resize(nt_);
+  cur_is_wall_.assign(nt_, 0);
   if (check_collisions_) {
-    soup_.resize(3 * static_cast<std::size_t>(nv_));
+    soup_.resize(static_cast<std::size_t>(nv_) + 2 * static_cast<std::size_t>(nc_));
     std::copy(wall.points.begin(), wall.points.end(), soup_.begin());
     tbb::parallel_for(0, nf_, [&](int f) {
       const Triangle& t = wall.triangles[f];
@@ -77,6 +99,8 @@ FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, boo
 ProximityRays FrontChecker::wall_rays() const {
   ProximityRays r;
   r.triangles = triangles_;
+  r.front_triangles = &front_;
+  r.wall_point = &wall_point_;
   r.wall_points = wall_points_;
   r.wall_tree = &wall_tree_;
   r.wall_normal = &wall_normal_;
@@ -97,27 +121,32 @@ ProximityRays FrontChecker::front_rays() const {
   return r;
 }
 
+namespace {
+
+bool names_a_point_twice(const IndexedTriangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
+
+}  // namespace
+
 void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) {
   k_ = k;
   cur_points_ = &top;
   layers_ = &layers;
-  const std::vector<Triangle>& tris = *triangles_;
   if (k > 0) {
-    tbb::parallel_for(0, nf_, [&](int f) {
-      const Triangle& t = tris[f];
+    tbb::parallel_for(0, nt_, [&](int f) {
+      const Triangle& t = front_[f];
       cur_boxes_[f] = Box::of_triangle(top[t[0]], top[t[1]], top[t[2]]);
     });
     cur_tree_.refit(cur_boxes_);
-    unit_normals(tris, top, &cur_normal_);
+    unit_normals(front_, top, &cur_normal_);
   }
   if (check_collisions_) {
     std::copy(top.begin(), top.end(), soup_.begin() + nv_);
     if (k > 0) {
-      auto cur_id = [&](int v) -> std::int64_t { return layers[v] == 0 ? v : nv_ + v; };
-      tbb::parallel_for(0, nf_, [&](int f) {
-        const Triangle& t = tris[f];
+      tbb::parallel_for(0, nt_, [&](int f) {
+        const Triangle& t = front_[f];
         cur_tris_[f] = {cur_id(t[0]), cur_id(t[1]), cur_id(t[2])};
-        cur_is_wall_[f] = layers[t[0]] == 0 && layers[t[1]] == 0 && layers[t[2]] == 0;
+        cur_is_wall_[f] = (layers[t[0]] == 0 && layers[t[1]] == 0 && layers[t[2]] == 0) ||
+                          names_a_point_twice(cur_tris_[f]);
       });
     }
   }
@@ -130,40 +159,49 @@ Box FrontChecker::soup_box(const IndexedTriangle& t) const {
 }
 
 void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<Vec3>& next) {
-  const std::vector<Triangle>& tris = *triangles_;
-  tbb::parallel_for(0, nf_, [&](int f) {
-    if (!tri_moved_[f]) return;
-    const Triangle& t = tris[f];
-    const std::array<bool, 3> g = {bool(grows_[t[0]]), bool(grows_[t[1]]), bool(grows_[t[2]])};
-    LayerCell cell;
-    bad_cell_[f] = 0;
-    // Local ids: 0..2 the bottoms, 3..5 the tops of the triangle's columns.
-    if (!layer_cell({0, 1, 2}, {3, 4, 5}, g, &cell)) return;
-    Vec3 c[6];
-    for (int i = 0; i < corner_count(cell.type); ++i) {
-      const int id = static_cast<int>(cell.nodes[i]);
-      c[i] = id < 3 ? top[t[id]] : next[t[id - 3]];
+  const std::int64_t n_cur = static_cast<std::int64_t>(nv_) + nc_;
+  auto position = [&](std::int64_t id) -> const Vec3& {
+    if (id < nv_) return (*wall_points_)[id];
+    if (id < n_cur) return top[id - nv_];
+    return next[id - n_cur];
+  };
+  tbb::parallel_for(0, ne_, [&](int e) {
+    if (!elem_moved_[e]) return;
+    const LayerElement& el = elements_[e];
+    const int n = el.kind == ElementKind::kStrip ? 4 : 3;
+    std::array<std::int64_t, 4> bottom{}, up{};
+    std::array<bool, 4> g{};
+    for (int i = 0; i < n; ++i) {
+      const int c = el.column[i];
+      bottom[i] = cur_id(c);
+      up[i] = n_cur + c;
+      g[i] = grows_[c];
     }
-    bad_cell_[f] = !cell_is_valid(cell.type, c);
+    LayerCell cell;
+    bad_cell_[e] = 0;
+    if (!element_layer_cell(el, bottom, up, g, &cell)) return;
+    Vec3 corners[8];
+    for (int i = 0; i < corner_count(cell.type); ++i) corners[i] = position(cell.nodes[i]);
+    bad_cell_[e] = !cell_is_valid(cell.type, corners);
   });
 }
 
 void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
-  const std::vector<Triangle>& tris = *triangles_;
-  const std::vector<int>& layers = *layers_;
-  auto cur_id = [&](int v) -> std::int64_t { return layers[v] == 0 ? v : nv_ + v; };
-  auto new_id = [&](int v) -> std::int64_t { return grows_[v] ? 2 * nv_ + v : cur_id(v); };
-  std::copy(next.begin(), next.end(), soup_.begin() + 2 * static_cast<std::size_t>(nv_));
-  tbb::parallel_for(0, nf_, [&](int f) {
-    const Triangle& t = tris[f];
+  const std::int64_t n_cur = static_cast<std::int64_t>(nv_) + nc_;
+  auto new_id = [&](int c) -> std::int64_t { return grows_[c] ? n_cur + c : cur_id(c); };
+  std::copy(next.begin(), next.end(), soup_.begin() + n_cur);
+  tbb::parallel_for(0, nt_, [&](int f) {
+    const Triangle& t = front_[f];
     new_tris_[f] = {new_id(t[0]), new_id(t[1]), new_id(t[2])};
     new_boxes_[f] = soup_box(new_tris_[f]);
+    // A triangle naming a point twice is no triangle: it is neither tested nor a partner.
+    if (names_a_point_twice(new_tris_[f])) tri_grows_[f] = 0;
     query_[f] = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
     if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
   });
   new_tree_.refit(new_boxes_);
   for (auto& l : partner_hits_) l.clear();
-  tbb::parallel_for(tbb::blocked_range<int>(0, nf_), [&](const tbb::blocked_range<int>& r) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, nt_), [&](const tbb::blocked_range<int>& r) {
     std::vector<int>& partners = partner_hits_.local();
     for (int f = r.begin(); f != r.end(); ++f) {
       if (!query_[f]) continue;
@@ -195,38 +233,48 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
 
 void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::vector<Vec3>& next,
                          const std::vector<char>& grows, FrontVerdict* out) {
-  const std::vector<Triangle>& tris = *triangles_;
   grows_ = grows;
-  parallel_vertices(nv_, [&](int v) {
+  parallel_vertices(nc_, [&](int v) {
     moved_[v] = attempt == 0 || grows_[v] != prev_grows_[v] || !(next[v] == prev_next_[v]);
   });
   prev_next_ = next;
   prev_grows_ = grows_;
-  tbb::parallel_for(0, nf_, [&](int f) {
-    const Triangle& t = tris[f];
+  tbb::parallel_for(0, nt_, [&](int f) {
+    const Triangle& t = front_[f];
     tri_moved_[f] = moved_[t[0]] || moved_[t[1]] || moved_[t[2]];
     tri_grows_[f] = grows_[t[0]] || grows_[t[1]] || grows_[t[2]];
+  });
+  tbb::parallel_for(0, ne_, [&](int e) {
+    const LayerElement& el = elements_[e];
+    const int n = el.kind == ElementKind::kStrip ? 4 : 3;
+    bool m = false;
+    for (int i = 0; i < n; ++i) m = m || moved_[el.column[i]];
+    elem_moved_[e] = m;
   });
   check_cells(top, next);
   if (check_collisions_) check_intersections(next);
   if (plane_) check_symmetry_side(next);
 
-  out->bad.assign(nv_, 0);
-  out->reason.assign(nv_, StopReason::kNone);
-  out->bad_triangle.assign(nf_, 0);
+  out->bad.assign(nc_, 0);
+  out->reason.assign(nc_, StopReason::kNone);
+  out->bad_triangle.assign(nt_, 0);
   out->any_bad = false;
-  for (int f = 0; f < nf_; ++f)
-    if (bad_cell_[f])
-      for (int v : tris[f])
-        if (grows_[v]) {
-          out->bad[v] = 1;
-          out->reason[v] = StopReason::kQuality;
-        }
-  for (int f = 0; f < nf_; ++f) {
+  for (int e = 0; e < ne_; ++e) {
+    if (!bad_cell_[e]) continue;
+    const LayerElement& el = elements_[e];
+    for (int i = 0; i < (el.kind == ElementKind::kStrip ? 4 : 3); ++i) {
+      const int v = el.column[i];
+      if (grows_[v]) {
+        out->bad[v] = 1;
+        out->reason[v] = StopReason::kQuality;
+      }
+    }
+  }
+  for (int f = 0; f < nt_; ++f) {
     const bool crossing = collided_[f] || (!side_bad_.empty() && side_bad_[f]);
-    out->bad_triangle[f] = bad_cell_[f] || crossing;
+    out->bad_triangle[f] = bad_cell_[element_of_triangle_[f]] || crossing;
     if (crossing)
-      for (int v : tris[f])
+      for (int v : front_[f])
         if (grows_[v]) {
           out->bad[v] = 1;
           if (out->reason[v] == StopReason::kNone) out->reason[v] = StopReason::kCollision;
@@ -238,11 +286,10 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
 void FrontChecker::check_symmetry_side(const std::vector<Vec3>& next) {
   // A triangle whose points all lie on the model's side (or in the plane, for the
   // columns on it) lies there too: the half space is convex.
-  const std::vector<Triangle>& tris = *triangles_;
-  side_bad_.assign(nf_, 0);
-  tbb::parallel_for(0, nf_, [&](int f) {
+  side_bad_.assign(nt_, 0);
+  tbb::parallel_for(0, nt_, [&](int f) {
     if (!tri_grows_[f]) return;
-    for (int v : tris[f])
+    for (int v : front_[f])
       if (grows_[v] && !on_plane_[v] && !(plane_->signed_distance(next[v]) > 0.0)) side_bad_[f] = 1;
   });
 }

@@ -3,19 +3,23 @@
 // itself, the current front and the wall. It owns the three triangle trees (wall,
 // current front, new front); the proximity rays borrow the first two.
 //
-// All three surfaces live on one point array ("soup") so that shared points are seen
-// as shared: wall point v -> v, current top v -> nv + v (v itself while the column is
-// still on the wall), new top v -> 2 nv + v (the current id where the column does not
-// grow). A new triangle none of whose columns grows is the current (or wall) triangle
-// itself, already checked, so it is neither tested nor a partner; likewise a current
-// triangle that is still the wall triangle.
+// The fronts are the layout's front triangles over the columns (fan_layout.h; without
+// fans, the wall's triangles over the wall points). All three surfaces live on one
+// point array ("soup") so that shared points are seen as shared: wall point w -> w,
+// current top of column c -> nv + c (its wall point while the column is still on the
+// wall), new top c -> nv + nc + c (the current id where the column does not grow). A
+// new triangle none of whose columns grows is the current (or wall) triangle itself,
+// already checked, so it is neither tested nor a partner; likewise a current triangle
+// that is still on the wall. A triangle that names one soup point twice (a fan strip
+// whose fan points are still on the wall) is a segment of its neighbours' edges and is
+// skipped. Cells are checked per layout element (layer_cells.h).
 //
 // Incremental re-checks: within a layer, a cell or new triangle is re-tested in a
 // later attempt only if one of its columns moved or changed growing state, or if it
 // failed in the previous attempt; the others are bit-identical to what already passed,
 // so every attempt ends with exactly the verdicts of a full re-check.
 //
-// One tree layout, the wall's, serves every surface of the run (TriangleBvh::refit).
+// One tree layout, the front's, serves every front of the run (TriangleBvh::refit).
 #pragma once
 
 #include <tbb/enumerable_thread_specific.h>
@@ -48,6 +52,8 @@ class FrontChecker {
   // must lie strictly on the model's side of it (a collision otherwise); points of the
   // columns on it lie in it by construction.
   FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions);
+  // The columns of a layout (topo = build_column_topology(layout)).
+  FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo, bool check_collisions);
 
   // The wall alone, for the wall-gap cap before marching.
   ProximityRays wall_rays() const;
@@ -71,12 +77,17 @@ class FrontChecker {
   Box soup_box(const IndexedTriangle& t) const;
 
   void check_symmetry_side(const std::vector<Vec3>& next);
+  std::int64_t cur_id(int c) const { return (*layers_)[c] == 0 ? wall_point_[c] : nv_ + c; }
 
-  const std::vector<Triangle>* triangles_;
+  const std::vector<Triangle>* triangles_;  // the wall's
+  std::vector<Triangle> front_;             // the front's, over the columns
+  std::vector<LayerElement> elements_;
+  std::vector<int> element_of_triangle_;
+  std::vector<int> wall_point_;
   std::optional<SymmetryPlane> plane_;
   std::vector<char> on_plane_;
   const std::vector<Vec3>* wall_points_;
-  int nv_ = 0, nf_ = 0, k_ = 0;
+  int nv_ = 0, nc_ = 0, nf_ = 0, nt_ = 0, ne_ = 0, k_ = 0;
   bool check_collisions_ = true;
 
   TriangleBvh wall_tree_, cur_tree_, new_tree_;
@@ -92,7 +103,8 @@ class FrontChecker {
   // Attempt state.
   std::vector<char> grows_, prev_grows_, moved_;
   std::vector<Vec3> prev_next_;
-  std::vector<char> bad_cell_, collided_, tri_moved_, tri_grows_, query_;
+  std::vector<char> bad_cell_, elem_moved_;                     // per element
+  std::vector<char> collided_, tri_moved_, tri_grows_, query_;  // per front triangle
   std::vector<char> side_bad_;  // a point of the new triangle off the model's side of the plane
   tbb::enumerable_thread_specific<std::vector<int>> partner_hits_;
 };

@@ -8,13 +8,14 @@
 
 #include "blayer/core/vec3.h"
 #include "blayer/core/volume_mesh.h"
+#include "blayer/extruder/fan_layout.h"
 
 namespace blayer {
 
 // One cell in VTK node order (only the first corner_count(type) nodes are used).
 struct LayerCell {
   CellType type = CellType::kWedge;
-  std::array<std::int64_t, 6> nodes{};
+  std::array<std::int64_t, 8> nodes{};
 };
 
 // Wall triangle (a,b,c) with right-hand normal into the fluid; bottom[i] is the point id
@@ -28,6 +29,28 @@ struct LayerCell {
 // triangle if one does, nothing otherwise), so neighbouring cells always conform.
 bool layer_cell(const std::array<std::int64_t, 3>& bottom, const std::array<std::int64_t, 3>& top,
                 const std::array<bool, 3>& grows, LayerCell* out);
+
+// The cell of one layer of a fan element (fan_layout.h), from the point ids of its
+// columns at the layer's base and one layer up. Columns of one fan point share their
+// wall point, so on the wall layer their bottom ids coincide; they always grow together.
+//   triangle, three equal bottoms (a corner patch on the wall), all grow:
+//            tet (a', c', b', p)        p the corner, (a,b,c) the patch triangle
+//   triangle otherwise: layer_cell.
+//   strip (q0 q1 q2 q3), fan point x = q0 q1, y = q2 q3, B bottoms, T tops:
+//     both grow, on the wall (B0 = B1, B2 = B3):
+//            wedge (x, T1, T0, y, T2, T3)    the fan wedge: its ends lie in the fan
+//                                            planes, its column edges 0-3 along the ridge
+//     both grow above it: hex (B0, B1, B2, B3, T0, T1, T2, T3)
+//     x grows, y stopped, on the wall: tet (x, T0, T1, y)
+//     x grows, y stopped, above it: wedge (B1, B2, T1, B0, B3, T0): the hex with y's
+//            column edges collapsed; its column edges 0-3, 1-4, 2-5 run across the fan
+//     y grows alone: the same with the quad read from q2.
+//   Nothing grows: false.
+// Faces shared with neighbours depend only on the columns they contain (a strip's end
+// face on its fan point's columns, its side faces on one column of each point), so
+// fan cells conform with each other and with the wall triangles' cells.
+bool element_layer_cell(const LayerElement& e, const std::array<std::int64_t, 4>& bottom,
+                        const std::array<std::int64_t, 4>& top, const std::array<bool, 4>& grows, LayerCell* out);
 
 
 }  // namespace blayer

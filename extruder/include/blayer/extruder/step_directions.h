@@ -26,8 +26,16 @@ struct StepDirections {
 // towards the normalised sum of its own and its ok neighbours' directions, fully, by a
 // half or by a quarter, and the first blend whose visibility is not below the
 // unsmoothed direction's (nor min_visibility) is kept; otherwise it stays.
+// Prescribed directions (fan columns on the wall, fan_layout.h): columns with a
+// non-zero n take it with the given visibility, ok when that is >= min_visibility, and
+// are not smoothed; their neighbours smooth towards them like towards any other.
+struct PrescribedDirections {
+  std::vector<Vec3> n;
+  std::vector<double> visibility;
+};
 StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
-                                       const std::vector<char>& active, const ExtrusionParams& p);
+                                       const std::vector<char>& active, const ExtrusionParams& p,
+                                       const PrescribedDirections* prescribed = nullptr);
 
 // Directions for a later layer from the previous layer's (column_directions):
 //   kKept        each column keeps its direction while it sees the current front's
