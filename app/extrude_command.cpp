@@ -47,6 +47,8 @@ ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, s
   e.max_step_stretch = p.get_real("max-step-stretch");
   e.check_collisions = p.get_bool("collision-check");
   e.direction_repair_passes = p.get_int("direction-repair-passes");
+  e.fan_angle_deg = p.get_real("fan-angle");
+  e.fan_max_sector_deg = p.get_real("fan-max-sector");
   e.column_directions = p.get_string("column-directions") == "recomputed" ? ColumnDirections::kRecomputed
                                                                          : ColumnDirections::kKept;
   e.limit_policy = p.get_string("limit") == "terminate" ? LimitPolicy::kTerminate : LimitPolicy::kCompress;

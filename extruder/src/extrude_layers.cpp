@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
@@ -11,6 +13,7 @@
 #include "blayer/extruder/column_state.h"
 #include "blayer/extruder/front_checker.h"
 #include "blayer/extruder/layer_assembly.h"
+#include "blayer/extruder/layer_cells.h"
 #include "blayer/extruder/layer_steps.h"
 #include "blayer/extruder/step_directions.h"
 #include "blayer/extruder/wall_planes.h"
@@ -59,9 +62,102 @@ std::vector<char> growing(const ColumnState& c) {
 }
 
 
-// One marching run on a column layout (fan_layout.h).
-ExtrusionResult march(const TriSurface& wall, const ColumnLayout& layout, WallTopology topo,
-                      const ExtrusionParams& params, const std::function<void(int, int)>& progress) {
+// Wall directions: fan columns take their sector or sub-normal directions; a single
+// column at a ridge end, whose fan on the front holds the strip ends' (still flat)
+// triangles, takes the wall's own normal at its point.
+StepDirections wall_directions(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
+                               const WallTopology& topo, const WallPlanes& planes, const ExtrusionParams& params) {
+  if (!layout.has_fans()) return compute_step_directions(layout.front, topo, topo.used, params);
+  PrescribedDirections fan{layout.direction, std::vector<double>(layout.n_columns(), 0.0)};
+  for (const LayerElement& e : layout.elements) {
+    if (e.kind != ElementKind::kStripEnd) continue;
+    const int c = e.column[0];
+    if (norm2(fan.n[c]) > 0.0) continue;
+    const VertexNormal n = surface_point_normal(wall, wall_topo, layout.wall_point[c], params.normal_method);
+    if (n.status != NormalStatus::kNoVisibleDirection && is_finite(n.normal)) fan.n[c] = n.normal;
+  }
+  for (int c = 0; c < layout.n_columns(); ++c)
+    if (norm2(fan.n[c]) > 0.0) fan.visibility[c] = planes.visibility(c, fan.n[c]);
+  return compute_step_directions(layout.front, topo, topo.used, params, &fan);
+}
+
+// Fan points whose fan cells (strips, strip ends, corner patches, the triangles split
+// at ridge ends and the wall triangles on fan columns) fail the exact validity test on
+// straight columns at their planned heights, layer by layer: short ridge edges under
+// tall layers fold them. Found before marching, they fall back to one column without a
+// marching rerun.
+std::vector<int> fan_points_failing_straight_layers(const TriSurface& wall, const ColumnLayout& layout,
+                                                    const WallPlanes& planes, const StepDirections& dirs,
+                                                    const ColumnPlan& plan, const ExtrusionParams& params) {
+  const int nv = static_cast<int>(wall.points.size()), nc = layout.n_columns();
+  const std::size_t n_wall_elements = wall.triangles.size();
+  std::vector<std::size_t> checked;
+  for (std::size_t i = 0; i < layout.elements.size(); ++i) {
+    const LayerElement& e = layout.elements[i];
+    bool fan = i >= n_wall_elements || e.split_at >= 0;
+    for (int j = 0; j < 3 && !fan; ++j) fan = layout.in_fan[e.column[j]];
+    if (fan) checked.push_back(i);
+  }
+  std::vector<char> failed(nv, 0);
+  // A fan column without a usable direction stops on the wall, and its fan with it.
+  for (int c = 0; c < nc; ++c)
+    if (layout.in_fan[c] && !dirs.ok[c]) failed[layout.wall_point[c]] = 1;
+  // Column tops: ids nv + c (the layer's base) and nv + nc + c (one layer up).
+  std::vector<Vec3> base(nc), up(nc);
+  for (int c = 0; c < nc; ++c) base[c] = wall.points[layout.wall_point[c]];
+  for (int k = 0; k < plan.n_layers; ++k) {
+    std::vector<char> grows(nc, 0);
+    for (int c = 0; c < nc; ++c) {
+      if (!dirs.ok[c] || plan.planned_layers[c] <= k) continue;
+      const Vec3& p = wall.points[layout.wall_point[c]];
+      const double h = plan.cumulative(c, k);
+      up[c] = p + std::clamp(planes.step_to_height(c, p, dirs.n[c], h), h, params.max_step_stretch * h) * dirs.n[c];
+      grows[c] = 1;
+    }
+    for (std::size_t i : checked) {
+      const LayerElement& e = layout.elements[i];
+      const int n = e.kind == ElementKind::kStrip ? 4 : 3;
+      std::array<std::int64_t, 4> bottom{}, top{};
+      std::array<bool, 4> g{};
+      for (int j = 0; j < n; ++j) {
+        const int c = e.column[j];
+        bottom[j] = k == 0 ? layout.wall_point[c] : nv + c;
+        top[j] = static_cast<std::int64_t>(nv) + nc + c;
+        g[j] = grows[c];
+      }
+      LayerCell cells[2];
+      const int n_cells = element_layer_cells(e, bottom, top, g, cells);
+      bool ok = true;
+      for (int q = 0; q < n_cells && ok; ++q) {
+        Vec3 corners[8];
+        for (int j = 0; j < corner_count(cells[q].type); ++j) {
+          const std::int64_t id = cells[q].nodes[j];
+          corners[j] = id < nv ? wall.points[id] : id < nv + nc ? base[id - nv] : up[id - nv - nc];
+        }
+        ok = cell_validity(cells[q].type, corners) == Validity::kValid;
+      }
+      if (ok) continue;
+      if (std::getenv("BLAYER_DEBUG_FANS"))
+        std::fprintf(stderr, "precheck: layer %d element %zu kind %d split %d (wall element %d) fails\n", k, i,
+                     int(e.kind), e.split_at, int(i < n_wall_elements));
+      for (int j = 0; j < n; ++j)
+        if (layout.in_fan[e.column[j]]) failed[layout.wall_point[e.column[j]]] = 1;
+    }
+    for (int c = 0; c < nc; ++c)
+      if (grows[c]) base[c] = up[c];
+  }
+  std::vector<int> out;
+  for (int w = 0; w < nv; ++w)
+    if (failed[w]) out.push_back(w);
+  return out;
+}
+
+// One marching run on a column layout (fan_layout.h). When fan points fail on straight
+// columns before marching (fan_points_failing_straight_layers), returns at once with
+// them in *fan_failures and no mesh.
+ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
+                      const WallTopology& topo, const ExtrusionParams& params,
+                      const std::function<void(int, int)>& progress, std::vector<int>* fan_failures) {
   const Stopwatch total;
   ExtrusionResult res;
   ExtrusionReport& rep = res.report;
@@ -73,17 +169,13 @@ ExtrusionResult march(const TriSurface& wall, const ColumnLayout& layout, WallTo
   Stopwatch phase;
   const WallPlanes planes(wall, layout, topo);
   const TriSurface& start = layout.front;
-  StepDirections dirs;
-  if (layout.has_fans()) {
-    PrescribedDirections fan{layout.direction, std::vector<double>(layout.n_columns(), 0.0)};
-    for (int c = 0; c < layout.n_columns(); ++c)
-      if (layout.in_fan[c]) fan.visibility[c] = planes.visibility(c, fan.n[c]);
-    dirs = compute_step_directions(start, topo, topo.used, params, &fan);
-  } else {
-    dirs = compute_step_directions(start, topo, topo.used, params);
-  }
+  StepDirections dirs = wall_directions(wall, wall_topo, layout, topo, planes, params);
   FrontChecker checker(wall, layout, topo, params.check_collisions);
   ColumnPlan plan = plan_column_heights(wall, topo, rep.growth, params, dirs, checker.wall_rays());
+  if (layout.has_fans()) {
+    *fan_failures = fan_points_failing_straight_layers(wall, layout, planes, dirs, plan, params);
+    if (!fan_failures->empty()) return res;
+  }
   ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
   LayerAssembler assembler(wall, layout, dirs);
   TriSurface front;
@@ -144,6 +236,7 @@ ExtrusionResult march(const TriSurface& wall, const ColumnLayout& layout, WallTo
   res.column_layers = columns.layers;
   res.stop_reason = columns.reason;
   res.column_wall_point = layout.wall_point;
+  res.front_wall_face = layout.wall_face;
   rep.columns_per_layer = assembler.columns_per_layer();
   rep.fans.cells = assembler.fan_cells();
   rep.min_visibility = rep.columns_per_layer.empty() ? 0.0 : assembler.min_visibility();
@@ -186,22 +279,39 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   const Stopwatch total;
   check_extrusion_params(params);
   check_wall(wall);
-  WallTopology wall_topo = build_wall_topology(wall, params.symmetry);
+  const WallTopology wall_topo = build_wall_topology(wall, params.symmetry);
   if (!(params.fan_angle_deg > 0.0)) {
-    ColumnLayout layout = single_column_layout(wall);
-    return march(wall, layout, std::move(wall_topo), params, progress);
+    std::vector<int> none;
+    return march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, &none);
   }
   // Fans; a fan point whose fan cannot grow its first layer falls back to one column,
   // and the extrusion is marched again (each attempt removes at least one fan point).
   const FanParams fp{params.fan_angle_deg, params.fan_max_sector_deg};
   std::vector<char> excluded = wall_topo.on_plane;
   int n_fallback = 0;
+  double t_layout = 0.0;
   for (int attempt = 0;; ++attempt) {
     const Stopwatch layout_time;
     const ColumnLayout layout = build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded);
-    const double t_layout = layout_time.seconds();
-    ExtrusionResult res = march(wall, layout, build_column_topology(layout, params.symmetry), params, progress);
+    t_layout += layout_time.seconds();
+    std::vector<int> precheck;
+    ExtrusionResult res =
+        march(wall, wall_topo, layout, build_column_topology(layout, params.symmetry), params, progress, &precheck);
+    if (!precheck.empty()) {
+      if (std::getenv("BLAYER_DEBUG_FANS"))
+        std::fprintf(stderr, "precheck round: %d fan points, %zu fail\n", layout.n_fan_points, precheck.size());
+      for (int w : precheck) excluded[w] = 1;
+      n_fallback += static_cast<int>(precheck.size());
+      --attempt;  // no marching happened
+      continue;
+    }
     const std::vector<int> failed = failed_fan_points(layout, res);
+    if (std::getenv("BLAYER_DEBUG_FANS"))
+      for (int c = 0; c < layout.n_columns(); ++c)
+        if (layout.in_fan[c] && res.column_layers[c] == 0)
+          std::fprintf(stderr, "fan column %d of point %d (%g %g %g) faceless %d: %s\n", c, layout.wall_point[c],
+                       wall.points[layout.wall_point[c]][0], wall.points[layout.wall_point[c]][1],
+                       wall.points[layout.wall_point[c]][2], layout.faceless[c], stop_reason_name(res.stop_reason[c]));
     if (failed.empty() || attempt + 1 >= kMaxFanAttempts) {
       FanSummary& f = res.report.fans;
       f.points = layout.n_fan_points;
@@ -209,7 +319,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
       for (char x : layout.in_fan) f.columns += x;
       f.ridge_edges = layout.n_ridge_edges;
       f.corners = layout.n_corners;
-      f.chains_skipped = layout.n_chains_skipped;
+      f.ridge_ends = layout.n_ridge_ends;
       f.fallback_points = n_fallback;
       f.failed_points = static_cast<int>(failed.size());
       f.attempts = attempt + 1;

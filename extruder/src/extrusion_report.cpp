@@ -190,14 +190,20 @@ std::string format_extrusion_report(const ExtrusionReport& r) {
          f.top_over_T_planes.p5, f.top_over_T_planes.p50, f.top_over_T_distance.p5, f.top_over_T_distance.p50,
          percent(f.top_ge_90pct_planes).c_str(), percent(f.top_ge_90pct_distance).c_str());
   }
+  if (r.fans.attempts > 0)
+    line(&s, "fans                %d points on %d ridge edges (%d ridge ends, %d corners), %d columns, %lld cells; "
+         "%d points fell back to one column",
+         r.fans.points, r.fans.ridge_edges, r.fans.ridge_ends, r.fans.corners, r.fans.columns,
+         static_cast<long long>(r.fans.cells), r.fans.fallback_points);
   if (r.n_symmetry_columns > 0)
     line(&s, "symmetry plane      %d columns on it, their points at most %.3g from it", r.n_symmetry_columns,
          r.max_symmetry_distance);
   std::string per_layer;
   for (int n : r.columns_per_layer) per_layer += " " + std::to_string(n);
   line(&s, "columns per layer  %s", per_layer.c_str());
-  line(&s, "cells               %lld wedges, %lld pyramids, %lld tets; %lld points",
+  line(&s, "cells               %lld wedges, %lld pyramids, %lld tets%s; %lld points",
        static_cast<long long>(r.n_wedges), static_cast<long long>(r.n_pyramids), static_cast<long long>(r.n_tets),
+       r.n_hexes > 0 ? (", " + std::to_string(r.n_hexes) + " hexes").c_str() : "",
        static_cast<long long>(r.n_points));
   line(&s, "min visibility      %.4f", r.min_visibility);
   line(&s, "time [s]            setup %.3f  normals %.3f  proximity %.3f  checks %.3f  assembly %.3f  report %.3f  "
@@ -255,7 +261,17 @@ nlohmann::json extrusion_report_to_json(const ExtrusionReport& r) {
                   {"thin_area", r.thin.total_area},
                   {"thin_columns_by_reason", by_reason(r.thin.columns)},
                   {"thin_area_by_reason", by_reason(r.thin.area)}};
-  j["cells"] = {{"wedges", r.n_wedges}, {"pyramids", r.n_pyramids}, {"tets", r.n_tets}, {"points", r.n_points}};
+  j["cells"] = {{"wedges", r.n_wedges}, {"pyramids", r.n_pyramids}, {"tets", r.n_tets},
+                {"hexes", r.n_hexes},   {"points", r.n_points}};
+  j["fans"] = {{"points", r.fans.points},
+               {"columns", r.fans.columns},
+               {"ridge_edges", r.fans.ridge_edges},
+               {"corners", r.fans.corners},
+               {"ridge_ends", r.fans.ridge_ends},
+               {"fallback_points", r.fans.fallback_points},
+               {"failed_points", r.fans.failed_points},
+               {"attempts", r.fans.attempts},
+               {"cells", r.fans.cells}};
   j["min_visibility"] = r.min_visibility;
   j["time_seconds"] = {{"setup", r.t_setup},   {"normals", r.t_normals},   {"proximity", r.t_proximity},
                        {"checks", r.t_checks}, {"assembly", r.t_assembly}, {"report", r.t_report},

@@ -57,30 +57,44 @@ std::vector<Ridge> find_ridges(const TriSurface& wall, const std::vector<Vec3>& 
   return ridges;
 }
 
-// Keeps the ridges of chains whose every point lies on two or more ridge edges and is
-// not excluded; counts the chains dropped.
-std::vector<Ridge> closed_chains(const std::vector<Ridge>& ridges, int n_points, const std::vector<char>& excluded,
-                                 int* n_skipped) {
-  std::vector<int> degree(n_points, 0);
+// Fan points: on two or more ridge edges, with a closed fan, not excluded. Keeps the
+// ridges with at least one fan point (a ridge between two single columns is none).
+std::vector<Ridge> ridges_with_fans(const std::vector<Ridge>& ridges, const VertexFans& fans,
+                                    const std::vector<char>& excluded, std::vector<char>* is_fan) {
+  const int nv = static_cast<int>(excluded.size());
+  std::vector<int> degree(nv, 0);
   for (const Ridge& r : ridges) {
     ++degree[r.a];
     ++degree[r.b];
   }
-  UnionFind chains(n_points);
-  for (const Ridge& r : ridges) chains.unite(r.a, r.b);
-  std::vector<char> bad(n_points, 0);
-  for (int v = 0; v < n_points; ++v)
-    if (degree[v] > 0 && (degree[v] == 1 || excluded[v])) bad[chains.find(v)] = 1;
-  std::set<int> skipped;
+  is_fan->assign(nv, 0);
+  for (int v = 0; v < nv; ++v)
+    (*is_fan)[v] = degree[v] >= 2 && !excluded[v] && v < static_cast<int>(fans.fans.size()) && fans.fans[v].closed;
   std::vector<Ridge> kept;
-  for (const Ridge& r : ridges) {
-    if (bad[chains.find(r.a)])
-      skipped.insert(chains.find(r.a));
-    else
-      kept.push_back(r);
-  }
-  *n_skipped = static_cast<int>(skipped.size());
+  for (const Ridge& r : ridges)
+    if ((*is_fan)[r.a] || (*is_fan)[r.b]) kept.push_back(r);
   return kept;
+}
+
+// Two ridge-end points joined by a wall edge would split the faces over that edge from
+// both ends: the fan points on ridges to them join no_fan. Returns whether any did.
+bool drop_adjacent_ridge_ends(const TriSurface& wall, const std::vector<Ridge>& ridges,
+                              const std::vector<char>& is_fan, std::vector<char>* no_fan) {
+  std::vector<char> end(is_fan.size(), 0);
+  for (const Ridge& r : ridges)
+    if (is_fan[r.a] != is_fan[r.b]) end[is_fan[r.a] ? r.b : r.a] = 1;
+  std::vector<char> clash(is_fan.size(), 0);
+  for (const Triangle& t : wall.triangles)
+    for (int i = 0; i < 3; ++i)
+      if (end[t[i]] && end[t[(i + 1) % 3]]) clash[t[i]] = clash[t[(i + 1) % 3]] = 1;
+  bool any = false;
+  for (const Ridge& r : ridges)
+    for (auto [x, y] : {std::pair{r.a, r.b}, std::pair{r.b, r.a}})
+      if (clash[x] && is_fan[y] && !(*no_fan)[y]) {
+        (*no_fan)[y] = 1;
+        any = true;
+      }
+  return any;
 }
 
 // The sectors of a fan point: runs of its fan's triangles between ridge edges.
@@ -152,28 +166,27 @@ ColumnLayout build_column_layout(const TriSurface& wall, const VertexFans& fans,
   std::vector<Vec3> fn(nf);
   for (int f = 0; f < nf; ++f) fn[f] = normalized(triangle_area_vector(wall, wall.triangles[f]));
   std::vector<Ridge> ridges;
+  std::vector<char> is_fan(nv, 0);
   if (p.fan_angle_deg > 0.0) {
+    const std::vector<Ridge> candidates = find_ridges(wall, fn, p.fan_angle_deg * kDegToRad);
     std::vector<char> no_fan = excluded;
-    for (int v = 0; v < nv; ++v)
-      if (v < static_cast<int>(fans.fans.size()) && !fans.fans[v].closed) no_fan[v] = 1;
-    ridges = closed_chains(find_ridges(wall, fn, p.fan_angle_deg * kDegToRad), nv, no_fan, &out.n_chains_skipped);
+    while (true) {
+      ridges = ridges_with_fans(candidates, fans, no_fan, &is_fan);
+      if (!drop_adjacent_ridge_ends(wall, ridges, is_fan, &no_fan)) break;
+    }
   }
-  if (ridges.empty()) {
-    const int skipped = out.n_chains_skipped;
-    out = single_column_layout(wall);
-    out.n_chains_skipped = skipped;
-    return out;
-  }
+  if (ridges.empty()) return single_column_layout(wall);
   std::set<EdgeKey> ridge_set;
   std::vector<int> degree(nv, 0);
   for (const Ridge& r : ridges) {
     ridge_set.insert(edge_key(r.a, r.b));
     ++degree[r.a];
     ++degree[r.b];
+    out.n_ridge_ends += is_fan[r.a] != is_fan[r.b];
   }
   out.n_ridge_edges = static_cast<int>(ridges.size());
 
-  // Columns of plain points and sector columns of fan points.
+  // Columns of single points and sector columns of fan points.
   std::vector<int> plain_column(nv, -1);
   std::vector<Sectors> sectors(nv);
   std::vector<std::vector<Vec3>> sector_dir(nv);
@@ -186,7 +199,7 @@ ColumnLayout build_column_layout(const TriSurface& wall, const VertexFans& fans,
     return out.n_columns() - 1;
   };
   for (int v = 0; v < nv; ++v) {
-    if (degree[v] < 2) {
+    if (!is_fan[v]) {
       plain_column[v] = add_column(v, Vec3{0.0, 0.0, 0.0}, false, false);
       continue;
     }
@@ -206,23 +219,28 @@ ColumnLayout build_column_layout(const TriSurface& wall, const VertexFans& fans,
     BLAYER_ASSERT(it != fan.triangles.end());
     return sectors[v].sector_of[it - fan.triangles.begin()];
   };
-  auto column_at = [&](int v, int f) { return degree[v] < 2 ? plain_column[v] : sectors[v].column[sector_at(v, f)]; };
+  auto column_at = [&](int v, int f) { return is_fan[v] ? sectors[v].column[sector_at(v, f)] : plain_column[v]; };
 
-  // Sub-normals per chain: m uniform along it, the largest any of its edges needs.
+  // Slices per ridge network: m uniform over it, the largest any of its fans needs.
   UnionFind chains(nv);
   for (const Ridge& r : ridges) chains.unite(r.a, r.b);
   std::map<int, int> chain_m;
   const double max_sector = std::max(p.max_sector_deg, 1.0) * kDegToRad;
-  for (const Ridge& r : ridges)
+  for (const Ridge& r : ridges) {
     for (int x : {r.a, r.b}) {
+      if (!is_fan[x]) continue;
       const double gap = angle_between(sector_dir[x][sector_at(x, r.t0)], sector_dir[x][sector_at(x, r.t1)]);
       int& m = chain_m[chains.find(x)];
       m = std::max({m, 1, static_cast<int>(std::ceil(gap / max_sector - 1e-9))});
     }
+  }
   // The fan of point x across a ridge between sectors s0 and s1: [column(s0), the
-  // interpolated ones, column(s1)]; shared by both ridge edges of a chain point.
+  // interpolated ones, column(s1)]; shared by both ridge edges of a chain point. A
+  // single point's "fan" is its one column, m + 1 times.
   std::map<std::array<int, 3>, std::vector<int>> fan_list;
-  auto fan_across = [&](int x, int s0, int s1, int m) {
+  auto fan_across = [&](int x, int f0, int f1, int m) {
+    if (!is_fan[x]) return std::vector<int>(m + 1, plain_column[x]);
+    const int s0 = sector_at(x, f0), s1 = sector_at(x, f1);
     const std::array<int, 3> key{x, std::min(s0, s1), std::max(s0, s1)};
     auto it = fan_list.find(key);
     if (it == fan_list.end()) {
@@ -243,38 +261,60 @@ ColumnLayout build_column_layout(const TriSurface& wall, const VertexFans& fans,
     out.wall_face.push_back(wall_face);
     out.element_of_triangle.push_back(static_cast<int>(out.elements.size()) - 1);
   };
-  // Front: wall triangles on their sector columns.
+  // Front: wall triangles on their sector columns; a corner at a ridge end splits.
+  std::vector<char> ridge_end(nv, 0);
+  for (const Ridge& r : ridges)
+    if (is_fan[r.a] != is_fan[r.b]) ridge_end[is_fan[r.a] ? r.b : r.a] = 1;
   for (int f = 0; f < nf; ++f) {
     const Triangle& t = wall.triangles[f];
     const Triangle c{column_at(t[0], f), column_at(t[1], f), column_at(t[2], f)};
-    out.elements.push_back({ElementKind::kTriangle, {c[0], c[1], c[2], -1}});
+    LayerElement e{ElementKind::kTriangle, {c[0], c[1], c[2], -1}};
+    for (int i = 0; i < 3; ++i)
+      if (ridge_end[t[i]]) e.split_at = i;
+    out.elements.push_back(e);
     add_triangle(c, f);
   }
-  // Strips along the ridges.
+  // Strips along the ridges: quads (L_a[j], L_a[j+1], L_b[j+1], L_b[j]); at a ridge end
+  // (one side a single column P) the quad is the triangle (P, X, Y), X Y consecutive in
+  // the fan.
   std::set<std::pair<int, int>> quad_edges;  // directed column edges of the strips
   for (const Ridge& r : ridges) {
-    const int m = chain_m[chains.find(r.a)];
-    const std::vector<int> la = fan_across(r.a, sector_at(r.a, r.t0), sector_at(r.a, r.t1), m);
-    const std::vector<int> lb = fan_across(r.b, sector_at(r.b, r.t0), sector_at(r.b, r.t1), m);
+    const int m = chain_m[chains.find(is_fan[r.a] ? r.a : r.b)];
+    const std::vector<int> la = fan_across(r.a, r.t0, r.t1, m);
+    const std::vector<int> lb = fan_across(r.b, r.t0, r.t1, m);
     for (int j = 0; j < m; ++j) {
       const std::array<int, 4> q{la[j], la[j + 1], lb[j + 1], lb[j]};
-      out.elements.push_back({ElementKind::kStrip, q});
-      add_triangle({q[0], q[1], q[2]}, -1);
-      add_triangle({q[0], q[2], q[3]}, -1);
       for (int k = 0; k < 4; ++k) quad_edges.insert({q[k], q[(k + 1) % 4]});
+      if (is_fan[r.a] && is_fan[r.b]) {
+        out.elements.push_back({ElementKind::kStrip, q});
+        add_triangle({q[0], q[1], q[2]}, -1);
+        add_triangle({q[0], q[2], q[3]}, -1);
+        continue;
+      }
+      LayerElement e;
+      e.kind = ElementKind::kStripEnd;
+      if (is_fan[r.a])  // triangle (P, la[j], la[j+1])
+        e.column = {lb[0], la[j], la[j + 1], -1};
+      else  // triangle (P, lb[j+1], lb[j])
+        e.column = {la[0], lb[j + 1], lb[j], -1};
+      out.elements.push_back(e);
+      add_triangle({e.column[0], e.column[1], e.column[2]}, -1);
     }
   }
   // Corner patches: the loop of directions around the corner, closed around a centre.
   for (int v = 0; v < nv; ++v) {
-    if (degree[v] < 3) continue;
+    if (!is_fan[v] || degree[v] < 3) continue;
     ++out.n_corners;
     const int n_sectors = static_cast<int>(sectors[v].first.size());
     std::vector<int> loop;
+    const VertexFan& fan = fans.fans[v];
+    const int k = static_cast<int>(fan.triangles.size());
+    const int m = chain_m[chains.find(v)];
     for (int s = 0; s < n_sectors; ++s) {
-      const int next = (s + 1) % n_sectors;
-      const int ridge_point = fans.fans[v].ring[sectors[v].first[next]];
-      const int m = chain_m[chains.find(ridge_point)];
-      const std::vector<int> l = fan_across(v, s, next, m);
+      // The ridge between sector s and the next: the leading edge of the next one's
+      // first triangle, between that triangle and the one before it (sector s).
+      const int i = sectors[v].first[(s + 1) % n_sectors];
+      const std::vector<int> l = fan_across(v, fan.triangles[(i + k - 1) % k], fan.triangles[i], m);
       loop.insert(loop.end(), l.begin(), l.end() - 1);
     }
     Vec3 sum{0.0, 0.0, 0.0};

@@ -177,12 +177,14 @@ void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<V
       up[i] = n_cur + c;
       g[i] = grows_[c];
     }
-    LayerCell cell;
+    LayerCell cells[2];
     bad_cell_[e] = 0;
-    if (!element_layer_cell(el, bottom, up, g, &cell)) return;
-    Vec3 corners[8];
-    for (int i = 0; i < corner_count(cell.type); ++i) corners[i] = position(cell.nodes[i]);
-    bad_cell_[e] = !cell_is_valid(cell.type, corners);
+    const int n_cells = element_layer_cells(el, bottom, up, g, cells);
+    for (int i_c = 0; i_c < n_cells; ++i_c) {
+      Vec3 corners[8];
+      for (int i = 0; i < corner_count(cells[i_c].type); ++i) corners[i] = position(cells[i_c].nodes[i]);
+      if (!cell_is_valid(cells[i_c].type, corners)) bad_cell_[e] = 1;
+    }
   });
 }
 

@@ -51,11 +51,13 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
       top[i] = new_top[e.column[i]];
       g[i] = grows[e.column[i]];
     }
-    LayerCell cell;
-    if (!element_layer_cell(e, bottom, top, g, &cell)) continue;
-    mesh_.add_cell(cell.type, cell.nodes.data());
-    if (i_e >= n_wall_elements_) ++fan_cells_;
-    cell_layer_.push_back(k);
+    LayerCell cells[2];
+    const int n_cells = element_layer_cells(e, bottom, top, g, cells);
+    for (int i = 0; i < n_cells; ++i) {
+      mesh_.add_cell(cells[i].type, cells[i].nodes.data());
+      if (i_e >= n_wall_elements_) ++fan_cells_;
+      cell_layer_.push_back(k);
+    }
   }
   for (int v = 0; v < nv; ++v) {
     if (!grows[v]) continue;

@@ -110,6 +110,10 @@ bool turn_to_visible(const StepDirections& d, const WallTopology& topo, int v, c
 
 }  // namespace
 
+VertexNormal surface_point_normal(const TriSurface& s, const WallTopology& topo, int v, NormalMethod method) {
+  return front_normal(s, topo, v, method);
+}
+
 StepDirections update_step_directions(const TriSurface& front, const WallTopology& topo,
                                       const std::vector<char>& active, const ExtrusionParams& p,
                                       const StepDirections& previous, int* n_turned) {

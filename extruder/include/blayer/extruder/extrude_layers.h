@@ -92,6 +92,7 @@ struct ExtrusionResult {
   std::vector<int> column_layers;                // layers reached per column
   std::vector<StopReason> stop_reason;           // per column
   std::vector<int> column_wall_point;            // per column: its wall point
+  std::vector<int> front_wall_face;              // per envelope triangle: its wall triangle, or -1
   ExtrusionReport report;
 };
 

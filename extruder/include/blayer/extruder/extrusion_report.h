@@ -51,7 +51,7 @@ struct FanSummary {
   int columns = 0;          // their columns (sectors, sub-normals, corner centres)
   int ridge_edges = 0;      // wall edges with a fan strip
   int corners = 0;          // fan points on three or more ridge edges
-  int chains_skipped = 0;   // ridge chains left on single columns (a free end)
+  int ridge_ends = 0;       // ridge edges from a fan point to a single column
   int fallback_points = 0;  // fan points that fell back to one column (first layer failed)
   int failed_points = 0;    // fan points that still grew no layer in the last attempt
   int attempts = 0;         // marching runs (1 + reruns after fallbacks); 0 without fans
