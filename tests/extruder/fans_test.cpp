@@ -12,6 +12,7 @@
 #include "blayer/core/vertex_fans.h"
 #include "blayer/extruder/extrude_layers.h"
 #include "blayer/extruder/fan_layout.h"
+#include "blayer/quality/layer_fidelity.h"
 #include "test_surfaces.h"
 
 namespace blayer {
@@ -349,6 +350,20 @@ TEST(FanExtrusion, BoxLayersAreValidConformingAndExactlyWallNormalAtTheEdges) {
   // distance to the box is h1 for every column, and a face column leaves along its
   // face's normal.
   const std::size_t nv = box.points.size();
+  // The mesh-only measure follows each face column of a fan (not the sub-normals,
+  // which leave the wall through no column edge): every column exact in both measures.
+  const double total = h1 * (std::pow(1.2, layers) - 1.0) / 0.2;
+  const LayerFidelity f = measure_layer_fidelity(r.mesh, box, {h1, total, layers});
+  int face_columns = 0;
+  const ColumnLayout l = layout_of(box);
+  for (int c = 0; c < l.n_columns(); ++c) face_columns += !l.faceless[c];
+  EXPECT_EQ(f.n_columns, face_columns);
+  EXPECT_EQ(f.n_fan_points, 12 * (n - 1) + 8);
+  EXPECT_EQ(f.n_branching, 0);
+  EXPECT_DOUBLE_EQ(f.first_within_1pct_planes, 1.0);
+  EXPECT_DOUBLE_EQ(f.first_within_1pct_distance, 1.0);
+  EXPECT_DOUBLE_EQ(f.complete_share, 1.0);
+  EXPECT_DOUBLE_EQ(f.area_coverage, 1.0);
   for (std::size_t c = 0; c < r.column_layers.size(); ++c) {
     ASSERT_EQ(r.column_layers[c], layers);
     const Vec3& q = r.mesh.points[nv + c];
