@@ -46,6 +46,8 @@ ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, s
   e.min_visibility = p.get_real("min-visibility");
   e.max_step_stretch = p.get_real("max-step-stretch");
   e.check_collisions = p.get_bool("collision-check");
+  e.solver_limits = {p.get_real("max-non-orthogonality"), p.get_real("max-skewness"), p.get_real("max-boundary-skewness"),
+                     p.get_real("max-face-warp"), p.get_bool("face-pyramids-check"), p.get_bool("face-tets-check")};
   e.direction_repair_passes = p.get_int("direction-repair-passes");
   e.fan_angle_deg = p.get_real("fan-angle");
   e.fan_max_sector_deg = p.get_real("fan-max-sector");

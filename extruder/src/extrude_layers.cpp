@@ -170,7 +170,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   const WallPlanes planes(wall, layout, topo);
   const TriSurface& start = layout.front;
   StepDirections dirs = wall_directions(wall, wall_topo, layout, topo, planes, params);
-  FrontChecker checker(wall, layout, topo, params.check_collisions);
+  FrontChecker checker(wall, layout, topo, params);
   ColumnPlan plan = plan_column_heights(wall, topo, rep.growth, params, dirs, checker.wall_rays());
   if (layout.has_fans()) {
     *fan_failures = fan_points_failing_straight_layers(wall, layout, planes, dirs, plan, params);
@@ -239,6 +239,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   res.front_wall_face = layout.wall_face;
   rep.columns_per_layer = assembler.columns_per_layer();
   rep.fans.cells = assembler.fan_cells();
+  rep.fans.solver_limits_skipped = checker.limits_skipped();
   rep.min_visibility = rep.columns_per_layer.empty() ? 0.0 : assembler.min_visibility();
   rep.t_assembly += phase.seconds();
 

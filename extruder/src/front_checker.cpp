@@ -5,9 +5,11 @@
 
 #include <algorithm>
 
+#include "blayer/core/edge_topology.h"
 #include "blayer/extruder/filtered_orient3d.h"
 #include "blayer/extruder/layer_cells.h"
 #include "blayer/quality/cell_validity.h"
+#include "blayer/quality/solver_acceptance.h"
 #include "parallel.h"
 
 namespace blayer {
@@ -26,6 +28,47 @@ bool cell_is_valid(CellType type, const Vec3* corners) {
   return true;
 }
 
+// The faces of triangle t's cell in one layer, each oriented out of the cell: [0] the
+// bottom (the front triangle seen from below), [1] the top, then the side face over
+// each wall edge (t0,t1), (t1,t2), (t2,t0) one of whose columns grows: (p_i, p_j,
+// p_j', p_i') without the tops of columns that do not grow. `lo` holds the columns'
+// points at the layer's base, `hi` their new points (read only where g is set). For a
+// wall triangle whose right-hand normal points into the fluid, these are the faces of
+// layer_cell's wedge, pyramid or tet.
+struct LayerCellFaces {
+  int n = 0;          // 0 when no column grows
+  PolyFace face[5];
+  int edge[5];        // wall edge of each face, -1 for the caps
+};
+
+LayerCellFaces layer_cell_faces(const Triangle& t, const std::vector<Vec3>& lo, const std::vector<Vec3>& hi,
+                                const std::array<bool, 3>& g) {
+  LayerCellFaces c;
+  if (!g[0] && !g[1] && !g[2]) return c;
+  auto up = [&](int i) -> const Vec3& { return g[i] ? hi[t[i]] : lo[t[i]]; };
+  c.face[0] = {3, {lo[t[0]], lo[t[2]], lo[t[1]]}};
+  c.face[1] = {3, {up(0), up(1), up(2)}};
+  c.edge[0] = c.edge[1] = -1;
+  c.n = 2;
+  for (int e = 0; e < 3; ++e) {
+    const int i = e, j = (e + 1) % 3;
+    if (!g[i] && !g[j]) continue;
+    PolyFace& f = c.face[c.n];
+    f.n = 0;
+    f.p[f.n++] = lo[t[i]];
+    f.p[f.n++] = lo[t[j]];
+    if (g[j]) f.p[f.n++] = hi[t[j]];
+    if (g[i]) f.p[f.n++] = hi[t[i]];
+    c.edge[c.n++] = e;
+  }
+  return c;
+}
+
+Vec3 layer_cell_centre(const LayerCellFaces& c, FaceGeometry* geo) {
+  for (int i = 0; i < c.n; ++i) geo[i] = face_geometry(c.face[i]);
+  return cell_geometry(geo, c.n).centre;
+}
+
 void unit_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& P, std::vector<Vec3>* out) {
   out->resize(tris.size());
   tbb::parallel_for(0, static_cast<int>(tris.size()), [&](int i) {
@@ -35,6 +78,58 @@ void unit_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
 }
 
 }  // namespace
+
+FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params)
+    : FrontChecker(wall, single_column_layout(wall), topo, params) {}
+
+FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+                           const ExtrusionParams& params)
+    : FrontChecker(wall, layout, topo, params.check_collisions) {
+  if (!params.solver_limits.any()) return;
+  // The acceptance passes index cells, columns and front triangles by wall triangle and
+  // wall point: only a layout of single columns has that shape.
+  if (nc_ != nv_ || ne_ != nf_ || front_ != wall.triangles) {
+    limits_skipped_ = true;
+    return;
+  }
+  for (const LayerElement& el : elements_)
+    if (el.kind != ElementKind::kTriangle || el.split_at >= 0) {
+      limits_skipped_ = true;
+      return;
+    }
+  limits_ = params.solver_limits;
+  build_edge_neighbours(wall);
+  centre_.resize(nf_);
+  below_centre_.resize(nf_);
+  cap_bad_.assign(nf_, 0);
+  side_face_bad_.assign(3 * static_cast<std::size_t>(nf_), 0);
+  side_geo_.resize(3 * static_cast<std::size_t>(nf_));
+}
+
+// The triangle across each wall edge (core/edge_topology.h): the other use of a
+// manifold edge; -1 on an open edge, -2 on a non-manifold or inconsistently oriented one.
+void FrontChecker::build_edge_neighbours(const TriSurface& wall) {
+  const std::vector<Triangle>& tris = *triangles_;
+  auto slot_of = [&](int f, int lo, int hi) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = tris[f][e], b = tris[f][(e + 1) % 3];
+      if (std::min(a, b) == lo && std::max(a, b) == hi) return 3 * f + e;
+    }
+    return -1;
+  };
+  edge_neighbour_.assign(3 * static_cast<std::size_t>(nf_), -2);
+  side_slot_.resize(edge_neighbour_.size());
+  for (std::size_t i = 0; i < side_slot_.size(); ++i) side_slot_[i] = static_cast<int>(i);
+  for (const SurfaceEdge& edge : build_edge_topology(wall).edges) {
+    const int f = edge.triangle[0], g = edge.triangle[1];
+    if (edge.kind == EdgeKind::kBoundary) edge_neighbour_[slot_of(f, edge.lo, edge.hi)] = -1;
+    if (edge.kind != EdgeKind::kManifold) continue;
+    const int sf = slot_of(f, edge.lo, edge.hi), sg = slot_of(g, edge.lo, edge.hi);
+    edge_neighbour_[sf] = g;
+    edge_neighbour_[sg] = f;
+    side_slot_[sf] = side_slot_[sg] = std::min(sf, sg);  // the smaller triangle's
+  }
+}
 
 FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions)
     : FrontChecker(wall, single_column_layout(wall), topo, check_collisions) {}
@@ -80,7 +175,7 @@ FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, c
   prev_grows_.assign(nc_, 0);
   moved_.assign(nc_, 0);
   prev_next_.resize(nc_);
-  for (auto* v : {&bad_cell_, &elem_moved_}) v->assign(ne_, 0);
+  for (auto* v : {&bad_cell_, &invalid_, &elem_moved_}) v->assign(ne_, 0);
   for (auto* v : {&collided_, &tri_moved_, &tri_grows_, &query_}) v->assign(nt_, 0);
   wall_tris_.resize(nf_);
   cur_tris_.resize(nt_);
@@ -151,7 +246,38 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
     }
   }
   std::fill(bad_cell_.begin(), bad_cell_.end(), 0);
+  std::fill(invalid_.begin(), invalid_.end(), 0);
   std::fill(collided_.begin(), collided_.end(), 0);
+  if (limits_.any()) {
+    below_known_ = k > 0 && previous_layer_ == k - 1;
+    if (below_known_) cells_below(k, top, layers);
+    previous_bottom_ = top;
+    previous_layer_ = k;
+  }
+}
+
+// Centres of the cells of layer k - 1: from the front at its start to `top`, grown
+// where a column has k layers.
+void FrontChecker::cells_below(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) {
+  // The last attempt of layer k - 1 is normally what was committed; its centres are
+  // then the ones wanted.
+  bool last_attempt_committed = true;
+  for (int v = 0; v < nv_ && last_attempt_committed; ++v) {
+    const bool grew = layers[v] >= k;
+    last_attempt_committed = grew == bool(prev_grows_[v]) && (!grew || top[v] == prev_next_[v]);
+  }
+  if (last_attempt_committed) {
+    below_centre_.swap(centre_);
+    return;
+  }
+  const std::vector<Triangle>& tris = *triangles_;
+  tbb::parallel_for(0, nf_, [&](int f) {
+    const Triangle& t = tris[f];
+    const std::array<bool, 3> g = {layers[t[0]] >= k, layers[t[1]] >= k, layers[t[2]] >= k};
+    const LayerCellFaces c = layer_cell_faces(t, previous_bottom_, top, g);
+    FaceGeometry geo[5];
+    if (c.n) below_centre_[f] = layer_cell_centre(c, geo);
+  });
 }
 
 Box FrontChecker::soup_box(const IndexedTriangle& t) const {
@@ -178,13 +304,69 @@ void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<V
       g[i] = grows_[c];
     }
     LayerCell cells[2];
-    bad_cell_[e] = 0;
+    invalid_[e] = 0;
     const int n_cells = element_layer_cells(el, bottom, up, g, cells);
     for (int i_c = 0; i_c < n_cells; ++i_c) {
       Vec3 corners[8];
       for (int i = 0; i < corner_count(cells[i_c].type); ++i) corners[i] = position(cells[i_c].nodes[i]);
-      if (!cell_is_valid(cells[i_c].type, corners)) bad_cell_[e] = 1;
+      if (!cell_is_valid(cells[i_c].type, corners)) invalid_[e] = 1;
     }
+  });
+  if (limits_.any()) {
+    check_acceptance(top, next);
+    return;
+  }
+  std::copy(invalid_.begin(), invalid_.end(), bad_cell_.begin());
+}
+
+// The solver-acceptance verdicts (see the header), in three passes: the centre of every
+// moved cell and the verdict on its caps; the side faces, each by its owner, re-judged
+// when a column of either cell moved; each cell's verdict from its caps, its side faces
+// and the exact test.
+void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vector<Vec3>& next) {
+  const std::vector<Triangle>& tris = *triangles_;
+  auto growing = [&](const Triangle& t) -> std::array<bool, 3> {
+    return {bool(grows_[t[0]]), bool(grows_[t[1]]), bool(grows_[t[2]])};
+  };
+  const FaceSide bottom_side = k_ == 0 ? FaceSide::kBoundary : below_known_ ? FaceSide::kInternal : FaceSide::kUnknown;
+  tbb::parallel_for(0, nf_, [&](int f) {
+    if (!tri_moved_[f]) return;
+    const Triangle& t = tris[f];
+    const LayerCellFaces c = layer_cell_faces(t, top, next, growing(t));
+    cap_bad_[f] = 0;
+    if (!c.n) return;
+    FaceGeometry geo[5];
+    centre_[f] = layer_cell_centre(c, geo);
+    for (int i = 2; i < c.n; ++i) side_geo_[3 * f + c.edge[i]] = geo[i];
+    if (invalid_[f]) return;
+    cap_bad_[f] =
+        judge_face(c.face[0], geo[0], centre_[f], bottom_side, below_centre_[f], limits_) != AcceptanceFailure::kNone ||
+        judge_face(c.face[1], geo[1], centre_[f], FaceSide::kBoundary, centre_[f], limits_) != AcceptanceFailure::kNone;
+  });
+  tbb::parallel_for(0, nf_, [&](int f) {
+    const int* nb = &edge_neighbour_[3 * f];
+    bool dirty = tri_moved_[f];
+    for (int e = 0; e < 3; ++e) dirty = dirty || (nb[e] >= 0 && tri_moved_[nb[e]]);
+    if (!dirty) return;
+    const Triangle& t = tris[f];
+    const LayerCellFaces c = layer_cell_faces(t, top, next, growing(t));
+    for (int e = 0; e < 3; ++e) {
+      const int slot = 3 * f + e, g = nb[e];
+      if (side_slot_[slot] != slot || !(tri_moved_[f] || (g >= 0 && tri_moved_[g]))) continue;
+      side_face_bad_[slot] = 0;
+      int i = 2;
+      while (i < c.n && c.edge[i] != e) ++i;
+      if (i >= c.n || invalid_[f] || (g >= 0 && invalid_[g])) continue;
+      const FaceGeometry& geo = side_geo_[slot];
+      const FaceSide side = g == -1 ? FaceSide::kBoundary : g == -2 ? FaceSide::kUnknown : FaceSide::kInternal;
+      const Vec3& other = g >= 0 ? centre_[g] : centre_[f];
+      side_face_bad_[slot] = judge_face(c.face[i], geo, centre_[f], side, other, limits_) != AcceptanceFailure::kNone;
+    }
+  });
+  tbb::parallel_for(0, nf_, [&](int f) {
+    const int* slot = &side_slot_[3 * f];
+    bad_cell_[f] = invalid_[f] || cap_bad_[f] || side_face_bad_[slot[0]] || side_face_bad_[slot[1]] ||
+                   side_face_bad_[slot[2]];
   });
 }
 
@@ -309,6 +491,13 @@ void FrontChecker::release() {
   release(cur_tree_);
   release(new_tree_);
   release(prev_next_);
+  release(edge_neighbour_);
+  release(side_slot_);
+  release(centre_);
+  release(below_centre_);
+  release(previous_bottom_);
+  release(side_face_bad_);
+  release(side_geo_);
 }
 
 }  // namespace blayer

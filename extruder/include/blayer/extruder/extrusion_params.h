@@ -7,6 +7,7 @@
 #include "blayer/core/symmetry_plane.h"
 #include "blayer/extruder/growth_law.h"
 #include "blayer/normals/point_normals.h"
+#include "blayer/quality/solver_acceptance.h"
 
 namespace blayer {
 
@@ -15,7 +16,8 @@ namespace blayer {
 enum class StopReason : int {
   kNone = 0,        // reached all layers at the law's heights
   kCollision = 1,   // the new front would intersect itself, the previous front or the wall
-  kQuality = 2,     // a new cell failed the exact corner-tet test even at reduced height
+  kQuality = 2,     // a new cell failed the exact corner-tet test or the solver-acceptance
+                    // limits (solver_limits) even at reduced height
   kProximity = 3,   // another front or wall ahead of the marching column
   kVisibility = 4,  // no direction sees all incident front faces by min_visibility
   kWallGap = 5,     // the wall across a gap, seen along the wall direction before marching
@@ -73,6 +75,19 @@ struct ExtrusionParams {
   // Exact per-layer intersection check of the new front (off: faster, no guarantee
   // that the envelope is free of self-intersections).
   bool check_collisions = true;
+  // What every new cell must meet beside the exact test, measured as OpenFOAM's
+  // checkMesh measures it (quality/solver_acceptance.h); a cell that breaks a limit
+  // fails like an invalid one (kQuality). 0 disables a limit. In order:
+  //   max_non_orthogonality_deg  89.99: inside checkMesh's error limit of 90 degrees;
+  //   max_skewness               4: checkMesh's failure limit (internal faces);
+  //   max_boundary_skewness      4: checkMesh applies the same 4 on the boundary;
+  //   max_face_warp_deg          0 (off);
+  //   face_pyramids              true: checkMesh's face pyramids;
+  //   face_tets                  false: checkMesh -allGeometry's face tets.
+  // front_checker.h says which faces each limit sees in a layer; docs/extrusion.md has
+  // the measurements behind the defaults (lower non-orthogonality limits and the face
+  // tets cost the pyHyp wings 9 % of their columns and more).
+  AcceptanceLimits solver_limits{89.99, 4.0, 4.0, 0.0, true, false};
   // A half model's symmetry plane (io/symmetry_detection.h): the wall's boundary points
   // on it grow columns that stay in it (directions from the fan mirrored about the
   // plane, projected into it); every other column stays on the model's side, the plane

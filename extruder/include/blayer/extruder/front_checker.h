@@ -1,7 +1,8 @@
 // The per-layer guard that keeps every cell valid while marching: the exact corner-tet
-// test of each new cell, and the exact intersection test of the new front against
-// itself, the current front and the wall. It owns the three triangle trees (wall,
-// current front, new front); the proximity rays borrow the first two.
+// test of each new cell, the solver-acceptance limits of its faces, and the exact
+// intersection test of the new front against itself, the current front and the wall.
+// It owns the three triangle trees (wall, current front, new front); the proximity rays
+// borrow the first two.
 //
 // The fronts are the layout's front triangles over the columns (fan_layout.h; without
 // fans, the wall's triangles over the wall points). All three surfaces live on one
@@ -19,6 +20,29 @@
 // failed in the previous attempt; the others are bit-identical to what already passed,
 // so every attempt ends with exactly the verdicts of a full re-check.
 //
+// Solver acceptance (ExtrusionParams::solver_limits, quality/solver_acceptance.h): a
+// new cell that passes the exact test must also meet the limits on each of its faces,
+// measured with the cell centres OpenFOAM computes:
+//   bottom face (the current front triangle): against the cell below it (layer k-1), or
+//     as a wall boundary face in layer 0;
+//   side faces (the quads and triangles over the wall edges): against the new cell of
+//     the edge's other triangle, or as boundary faces on open wall edges;
+//   top face (the new front triangle): as a boundary face, the layers' envelope, until
+//     a later layer covers it and judges it again as its bottom face.
+// Every face of a layers-only mesh is thus judged with the final centres on both its
+// sides, so the layer mesh meets the limits (up to the rounding of checkMesh's own
+// sums, 1e-15 relative). Not judged: the faces between the envelope and a tetrahedral
+// fill (their other side does not exist yet) and the fill's cells; in a fill the
+// envelope faces are internal faces judged here as boundary faces, which bounds their
+// skewness only approximately. A shared side face is judged once, from the triangle
+// of smaller id, and fails both cells; faces of a cell that fails the exact test are
+// not judged (the cell fails anyway). The cell below is known when begin_layer(k - 1)
+// was called on this checker; otherwise the bottom face's two-cell measures are
+// skipped (the cell-only ones are kept). Incremental re-checks extend to the
+// acceptance verdicts: a face is re-judged when a column of either of its cells moved.
+// With fans the limits are not applied (the faces of fan cells have no neighbour table
+// yet); the run's report says so.
+//
 // One tree layout, the front's, serves every front of the run (TriangleBvh::refit).
 #pragma once
 
@@ -34,6 +58,7 @@
 #include "blayer/extruder/triangle_bvh.h"
 #include "blayer/extruder/triangle_intersections.h"
 #include "blayer/extruder/wall_topology.h"
+#include "blayer/quality/solver_acceptance.h"
 
 namespace blayer {
 
@@ -50,10 +75,17 @@ class FrontChecker {
   // check_collisions false: cells are still checked, the intersection test is skipped.
   // topo.plane (a half model's symmetry plane): a new point of a column off the plane
   // must lie strictly on the model's side of it (a collision otherwise); points of the
-  // columns on it lie in it by construction.
+  // columns on it lie in it by construction. No solver-acceptance limits.
   FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions);
   // The columns of a layout (topo = build_column_topology(layout)).
   FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo, bool check_collisions);
+  // params.check_collisions and params.solver_limits. The limits are applied to single
+  // columns only: a layout with fans (strips, corner patches, split cells) is checked
+  // exactly but not against the limits, and limits_skipped() says so.
+  FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params);
+  FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+               const ExtrusionParams& params);
+  bool limits_skipped() const { return limits_skipped_; }
 
   // The wall alone, for the wall-gap cap before marching.
   ProximityRays wall_rays() const;
@@ -73,8 +105,11 @@ class FrontChecker {
 
  private:
   void check_cells(const std::vector<Vec3>& top, const std::vector<Vec3>& next);
+  void check_acceptance(const std::vector<Vec3>& top, const std::vector<Vec3>& next);
+  void cells_below(int k, const std::vector<Vec3>& top, const std::vector<int>& layers);
   void check_intersections(const std::vector<Vec3>& next);
   Box soup_box(const IndexedTriangle& t) const;
+  void build_edge_neighbours(const TriSurface& wall);
 
   void check_symmetry_side(const std::vector<Vec3>& next);
   std::int64_t cur_id(int c) const { return (*layers_)[c] == 0 ? wall_point_[c] : nv_ + c; }
@@ -99,6 +134,19 @@ class FrontChecker {
   std::vector<IndexedTriangle> wall_tris_, cur_tris_, new_tris_;
   std::vector<char> cur_is_wall_;
   const std::vector<int>* layers_ = nullptr;
+
+  // Solver acceptance: the limits; per triangle and edge, the triangle across the edge
+  // (-1 on an open edge, -2 on a non-manifold one) and the slot (3 x triangle + edge)
+  // that holds the shared side face's verdict (its owner's); the centres of the new
+  // cells and of the cells below; the front at the start of the previous layer.
+  AcceptanceLimits limits_;
+  std::vector<int> edge_neighbour_, side_slot_;
+  std::vector<Vec3> centre_, below_centre_, previous_bottom_;
+  std::vector<FaceGeometry> side_geo_;  // per slot: the side face seen from its triangle
+  int previous_layer_ = -1;
+  bool limits_skipped_ = false;
+  bool below_known_ = false;
+  std::vector<char> invalid_, cap_bad_, side_face_bad_;
 
   // Attempt state.
   std::vector<char> grows_, prev_grows_, moved_;
