@@ -137,9 +137,6 @@ std::vector<int> fan_points_failing_straight_layers(const TriSurface& wall, cons
         ok = cell_validity(cells[q].type, corners) == Validity::kValid;
       }
       if (ok) continue;
-      if (std::getenv("BLAYER_DEBUG_FANS"))
-        std::fprintf(stderr, "precheck: layer %d element %zu kind %d split %d (wall element %d) fails\n", k, i,
-                     int(e.kind), e.split_at, int(i < n_wall_elements));
       for (int j = 0; j < n; ++j)
         if (layout.in_fan[e.column[j]]) failed[layout.wall_point[e.column[j]]] = 1;
     }
@@ -299,20 +296,12 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     ExtrusionResult res =
         march(wall, wall_topo, layout, build_column_topology(layout, params.symmetry), params, progress, &precheck);
     if (!precheck.empty()) {
-      if (std::getenv("BLAYER_DEBUG_FANS"))
-        std::fprintf(stderr, "precheck round: %d fan points, %zu fail\n", layout.n_fan_points, precheck.size());
       for (int w : precheck) excluded[w] = 1;
       n_fallback += static_cast<int>(precheck.size());
       --attempt;  // no marching happened
       continue;
     }
     const std::vector<int> failed = failed_fan_points(layout, res);
-    if (std::getenv("BLAYER_DEBUG_FANS"))
-      for (int c = 0; c < layout.n_columns(); ++c)
-        if (layout.in_fan[c] && res.column_layers[c] == 0)
-          std::fprintf(stderr, "fan column %d of point %d (%g %g %g) faceless %d: %s\n", c, layout.wall_point[c],
-                       wall.points[layout.wall_point[c]][0], wall.points[layout.wall_point[c]][1],
-                       wall.points[layout.wall_point[c]][2], layout.faceless[c], stop_reason_name(res.stop_reason[c]));
     if (failed.empty() || attempt + 1 >= kMaxFanAttempts) {
       FanSummary& f = res.report.fans;
       f.points = layout.n_fan_points;
