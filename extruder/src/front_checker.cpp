@@ -86,19 +86,16 @@ FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, c
                            const ExtrusionParams& params)
     : FrontChecker(wall, layout, topo, params.check_collisions) {
   if (!params.solver_limits.any()) return;
-  // The acceptance passes index cells, columns and front triangles by wall triangle and
-  // wall point: only a layout of single columns has that shape.
-  if (nc_ != nv_ || ne_ != nf_ || front_ != wall.triangles) {
-    limits_skipped_ = true;
-    return;
-  }
-  for (const LayerElement& el : elements_)
-    if (el.kind != ElementKind::kTriangle || el.split_at >= 0) {
+  // The acceptance passes judge the cells of the wall triangles, which are the first
+  // front triangles, on their columns (fan_layout.h).
+  for (int f = 0; f < nf_; ++f)
+    if (layout.wall_face[f] != f || elements_[f].kind != ElementKind::kTriangle) {
       limits_skipped_ = true;
       return;
     }
   limits_ = params.solver_limits;
-  build_edge_neighbours(wall);
+  acc_tris_.assign(front_.begin(), front_.begin() + nf_);
+  build_edge_neighbours(wall, layout);
   centre_.resize(nf_);
   below_centre_.resize(nf_);
   cap_bad_.assign(nf_, 0);
@@ -106,10 +103,13 @@ FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, c
   side_geo_.resize(3 * static_cast<std::size_t>(nf_));
 }
 
-// The triangle across each wall edge (core/edge_topology.h): the other use of a
-// manifold edge; -1 on an open edge, -2 on a non-manifold or inconsistently oriented one.
-void FrontChecker::build_edge_neighbours(const TriSurface& wall) {
-  const std::vector<Triangle>& tris = *triangles_;
+// The wall triangle across each edge of a wall triangle's cell (core/edge_topology.h on
+// the wall triangles over their columns): the other use of a manifold edge; -1 on an
+// open wall edge; -2 where the cell across is not a wall triangle's (a fan strip beside
+// a ridge edge), is not judged (a wall triangle split at a ridge end) or the edge is
+// non-manifold or inconsistently oriented.
+void FrontChecker::build_edge_neighbours(const TriSurface& wall, const ColumnLayout& layout) {
+  const std::vector<Triangle>& tris = acc_tris_;
   auto slot_of = [&](int f, int lo, int hi) {
     for (int e = 0; e < 3; ++e) {
       const int a = tris[f][e], b = tris[f][(e + 1) % 3];
@@ -120,11 +120,23 @@ void FrontChecker::build_edge_neighbours(const TriSurface& wall) {
   edge_neighbour_.assign(3 * static_cast<std::size_t>(nf_), -2);
   side_slot_.resize(edge_neighbour_.size());
   for (std::size_t i = 0; i < side_slot_.size(); ++i) side_slot_[i] = static_cast<int>(i);
-  for (const SurfaceEdge& edge : build_edge_topology(wall).edges) {
+  skip_acceptance_.assign(nf_, 0);
+  for (int f = 0; f < nf_; ++f) skip_acceptance_[f] = elements_[f].split_at >= 0;
+  std::vector<char> open_wall_edge(3 * static_cast<std::size_t>(nf_), 0);
+  for (const SurfaceEdge& edge : build_edge_topology(wall).edges)
+    if (edge.kind == EdgeKind::kBoundary)
+      for (int e = 0; e < 3; ++e) {
+        const Triangle& t = wall.triangles[edge.triangle[0]];
+        if (std::min(t[e], t[(e + 1) % 3]) == edge.lo && std::max(t[e], t[(e + 1) % 3]) == edge.hi)
+          open_wall_edge[3 * edge.triangle[0] + e] = 1;
+      }
+  const TriSurface cells{layout.front.points, acc_tris_};
+  for (const SurfaceEdge& edge : build_edge_topology(cells).edges) {
     const int f = edge.triangle[0], g = edge.triangle[1];
-    if (edge.kind == EdgeKind::kBoundary) edge_neighbour_[slot_of(f, edge.lo, edge.hi)] = -1;
-    if (edge.kind != EdgeKind::kManifold) continue;
-    const int sf = slot_of(f, edge.lo, edge.hi), sg = slot_of(g, edge.lo, edge.hi);
+    const int sf = slot_of(f, edge.lo, edge.hi);
+    if (edge.kind == EdgeKind::kBoundary && open_wall_edge[sf]) edge_neighbour_[sf] = -1;
+    if (edge.kind != EdgeKind::kManifold || skip_acceptance_[f] || skip_acceptance_[g]) continue;
+    const int sg = slot_of(g, edge.lo, edge.hi);
     edge_neighbour_[sf] = g;
     edge_neighbour_[sg] = f;
     side_slot_[sf] = side_slot_[sg] = std::min(sf, sg);  // the smaller triangle's
@@ -262,7 +274,7 @@ void FrontChecker::cells_below(int k, const std::vector<Vec3>& top, const std::v
   // The last attempt of layer k - 1 is normally what was committed; its centres are
   // then the ones wanted.
   bool last_attempt_committed = true;
-  for (int v = 0; v < nv_ && last_attempt_committed; ++v) {
+  for (int v = 0; v < nc_ && last_attempt_committed; ++v) {
     const bool grew = layers[v] >= k;
     last_attempt_committed = grew == bool(prev_grows_[v]) && (!grew || top[v] == prev_next_[v]);
   }
@@ -270,7 +282,7 @@ void FrontChecker::cells_below(int k, const std::vector<Vec3>& top, const std::v
     below_centre_.swap(centre_);
     return;
   }
-  const std::vector<Triangle>& tris = *triangles_;
+  const std::vector<Triangle>& tris = acc_tris_;
   tbb::parallel_for(0, nf_, [&](int f) {
     const Triangle& t = tris[f];
     const std::array<bool, 3> g = {layers[t[0]] >= k, layers[t[1]] >= k, layers[t[2]] >= k};
@@ -324,7 +336,7 @@ void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<V
 // when a column of either cell moved; each cell's verdict from its caps, its side faces
 // and the exact test.
 void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vector<Vec3>& next) {
-  const std::vector<Triangle>& tris = *triangles_;
+  const std::vector<Triangle>& tris = acc_tris_;
   auto growing = [&](const Triangle& t) -> std::array<bool, 3> {
     return {bool(grows_[t[0]]), bool(grows_[t[1]]), bool(grows_[t[2]])};
   };
@@ -334,7 +346,7 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
     const Triangle& t = tris[f];
     const LayerCellFaces c = layer_cell_faces(t, top, next, growing(t));
     cap_bad_[f] = 0;
-    if (!c.n) return;
+    if (!c.n || skip_acceptance_[f]) return;
     FaceGeometry geo[5];
     centre_[f] = layer_cell_centre(c, geo);
     for (int i = 2; i < c.n; ++i) side_geo_[3 * f + c.edge[i]] = geo[i];
@@ -347,7 +359,7 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
     const int* nb = &edge_neighbour_[3 * f];
     bool dirty = tri_moved_[f];
     for (int e = 0; e < 3; ++e) dirty = dirty || (nb[e] >= 0 && tri_moved_[nb[e]]);
-    if (!dirty) return;
+    if (!dirty || skip_acceptance_[f]) return;
     const Triangle& t = tris[f];
     const LayerCellFaces c = layer_cell_faces(t, top, next, growing(t));
     for (int e = 0; e < 3; ++e) {
@@ -368,6 +380,8 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
     bad_cell_[f] = invalid_[f] || cap_bad_[f] || side_face_bad_[slot[0]] || side_face_bad_[slot[1]] ||
                    side_face_bad_[slot[2]];
   });
+  // Fan strips and corner patches: the exact test only.
+  std::copy(invalid_.begin() + nf_, invalid_.end(), bad_cell_.begin() + nf_);
 }
 
 void FrontChecker::check_intersections(const std::vector<Vec3>& next) {

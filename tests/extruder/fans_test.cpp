@@ -12,6 +12,8 @@
 #include "blayer/core/vertex_fans.h"
 #include "blayer/extruder/extrude_layers.h"
 #include "blayer/extruder/fan_layout.h"
+#include "blayer/extruder/front_checker.h"
+#include "blayer/extruder/wall_topology.h"
 #include "blayer/quality/layer_fidelity.h"
 #include "test_surfaces.h"
 
@@ -371,6 +373,58 @@ TEST(FanExtrusion, BoxLayersAreValidConformingAndExactlyWallNormalAtTheEdges) {
     for (int i = 0; i < 3; ++i) nearest[i] = std::clamp(q[i], 0.0, 1.0);
     EXPECT_NEAR(norm(q - nearest), h1, 1e-12) << "column " << c;
   }
+}
+
+// The solver-acceptance limits judge the wall triangles' cells of a fanned front: on a
+// box, one layer along the exact face and fan directions passes a tight boundary
+// skewness limit (right prisms: 0); shearing the top face's own columns keeps every
+// cell valid but fails the sheared cells: only columns on the top face are blamed.
+TEST(FanExtrusion, SolverLimitsJudgeTheWallTrianglesCellsOfAFannedFront) {
+  const TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, 3);
+  const ColumnLayout l = layout_of(box);
+  ASSERT_TRUE(l.has_fans());
+  const int nc = l.n_columns();
+  std::vector<Vec3> dir(nc);
+  for (int c = 0; c < nc; ++c) dir[c] = l.direction[c];
+  for (std::size_t f = 0; f < box.triangles.size(); ++f)
+    for (int c : l.front.triangles[f])
+      if (!l.in_fan[c]) dir[c] = unit_normal(box, static_cast<int>(f));
+  const double h = 0.01;
+  auto layer = [&](double shear) {
+    std::vector<Vec3> next(nc);
+    for (int c = 0; c < nc; ++c) {
+      next[c] = l.front.points[c] + h * dir[c];
+      if (!l.in_fan[c] && l.front.points[c][2] == 1.0) next[c] += Vec3{shear, 0, 0};
+    }
+    return next;
+  };
+  ExtrusionParams p;
+  p.check_collisions = false;
+  p.solver_limits = AcceptanceLimits{};
+  p.solver_limits.max_boundary_skewness = 0.05;
+  const WallTopology topo = build_column_topology(l);
+  const std::vector<int> layers(nc, 0);
+  const std::vector<char> grows(nc, 1);
+  auto run = [&](bool limited, double shear) {
+    FrontChecker checker = limited ? FrontChecker(box, l, topo, p) : FrontChecker(box, l, topo, false);
+    EXPECT_FALSE(checker.limits_skipped());
+    checker.begin_layer(0, l.front.points, layers);
+    FrontVerdict v;
+    checker.check(0, l.front.points, layer(shear), grows, &v);
+    return v;
+  };
+  EXPECT_FALSE(run(true, 0.0).any_bad) << "right prisms and exact fan cells";
+  EXPECT_FALSE(run(false, 0.05).any_bad) << "the sheared layer is valid";
+  const FrontVerdict v = run(true, 0.05);
+  ASSERT_TRUE(v.any_bad);
+  int n_bad = 0;
+  for (int c = 0; c < nc; ++c) {
+    if (!v.bad[c]) continue;
+    ++n_bad;
+    EXPECT_EQ(v.reason[c], StopReason::kQuality);
+    EXPECT_EQ(l.front.points[c][2], 1.0) << "column " << c << " is not on the sheared face";
+  }
+  EXPECT_GT(n_bad, 0);
 }
 
 TEST(FanExtrusion, TrailingEdgeFaceColumnsLeaveAlongTheirFaceNormals) {

@@ -23,8 +23,11 @@ using test_surfaces::icosphere;
 using test_surfaces::square_plate;
 
 // Parameters with the growth law N layers from first height h1 growing by ratio r.
+// Single columns (fans off): the marching stages these tests pin down index columns by
+// wall point; fans_test.cpp turns fans on where it tests them.
 inline ExtrusionParams growth_params(int n, double h1, double r) {
   ExtrusionParams p;
+  p.fan_angle_deg = 0.0;
   p.growth.layers = n;
   p.growth.first_height = h1;
   p.growth.growth_ratio = r;

@@ -97,7 +97,7 @@ struct ExtrusionParams {
   // fan_angle_deg gets a fan of columns at its points, one per smooth sector along the
   // sector's own normal, with sub-normals so that neighbouring columns differ by at
   // most fan_max_sector_deg; 0 disables fans.
-  double fan_angle_deg = 0.0;
+  double fan_angle_deg = 60.0;
   double fan_max_sector_deg = 30.0;
 };
 

@@ -40,8 +40,11 @@
 // was called on this checker; otherwise the bottom face's two-cell measures are
 // skipped (the cell-only ones are kept). Incremental re-checks extend to the
 // acceptance verdicts: a face is re-judged when a column of either of its cells moved.
-// With fans the limits are not applied (the faces of fan cells have no neighbour table
-// yet); the run's report says so.
+// With fans the limits judge the cells of the wall triangles (on their sector columns);
+// a side face shared with a fan strip is judged from the wall triangle's side alone
+// (FaceSide::kUnknown), and the fan cells (strips, corner patches, the wall triangles
+// split at ridge ends) pass on the exact test alone. limits_skipped() is set when a
+// layout does not start its front with the wall triangles (none built here does).
 //
 // One tree layout, the front's, serves every front of the run (TriangleBvh::refit).
 #pragma once
@@ -79,9 +82,9 @@ class FrontChecker {
   FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions);
   // The columns of a layout (topo = build_column_topology(layout)).
   FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo, bool check_collisions);
-  // params.check_collisions and params.solver_limits. The limits are applied to single
-  // columns only: a layout with fans (strips, corner patches, split cells) is checked
-  // exactly but not against the limits, and limits_skipped() says so.
+  // params.check_collisions and params.solver_limits. With fans the limits judge the
+  // wall triangles' cells; fan strips, corner patches and the cells split at ridge ends
+  // are checked exactly only (see the header comment).
   FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params);
   FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
                const ExtrusionParams& params);
@@ -109,7 +112,7 @@ class FrontChecker {
   void cells_below(int k, const std::vector<Vec3>& top, const std::vector<int>& layers);
   void check_intersections(const std::vector<Vec3>& next);
   Box soup_box(const IndexedTriangle& t) const;
-  void build_edge_neighbours(const TriSurface& wall);
+  void build_edge_neighbours(const TriSurface& wall, const ColumnLayout& layout);
 
   void check_symmetry_side(const std::vector<Vec3>& next);
   std::int64_t cur_id(int c) const { return (*layers_)[c] == 0 ? wall_point_[c] : nv_ + c; }
@@ -140,7 +143,9 @@ class FrontChecker {
   // that holds the shared side face's verdict (its owner's); the centres of the new
   // cells and of the cells below; the front at the start of the previous layer.
   AcceptanceLimits limits_;
+  std::vector<Triangle> acc_tris_;  // the wall triangles on their columns (front's first)
   std::vector<int> edge_neighbour_, side_slot_;
+  std::vector<char> skip_acceptance_;  // wall triangles split at a ridge end
   std::vector<Vec3> centre_, below_centre_, previous_bottom_;
   std::vector<FaceGeometry> side_geo_;  // per slot: the side face seen from its triangle
   int previous_layer_ = -1;
