@@ -44,6 +44,8 @@ void check_wall(const TriSurface& wall) {
 // column. A failed first layer at a fan point is rare (the fan's cells are as valid as
 // the wall's own where the sectors are smooth), so two reruns cover what happens.
 constexpr int kMaxFanAttempts = 3;
+// Rounds of the straight-layer precheck before every remaining fan point falls back.
+constexpr int kMaxPrecheckRounds = 3;
 
 [[maybe_unused]] bool every_cell_valid(const VolumeMesh& m) {
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
@@ -286,7 +288,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   // and the extrusion is marched again (each attempt removes at least one fan point).
   const FanParams fp{params.fan_angle_deg, params.fan_max_sector_deg};
   std::vector<char> excluded = wall_topo.on_plane;
-  int n_fallback = 0;
+  int n_fallback = 0, precheck_rounds = 0;
   double t_layout = 0.0;
   for (int attempt = 0;; ++attempt) {
     const Stopwatch layout_time;
@@ -296,6 +298,15 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     ExtrusionResult res =
         march(wall, wall_topo, layout, build_column_topology(layout, params.symmetry), params, progress, &precheck);
     if (!precheck.empty()) {
+      // Each round rebuilds the layout and its directions: when most fans fail, or
+      // after a few rounds, every remaining fan point falls back at once.
+      if (2 * static_cast<int>(precheck.size()) > layout.n_fan_points || ++precheck_rounds >= kMaxPrecheckRounds) {
+        precheck.clear();
+        for (int c = 0; c < layout.n_columns(); ++c)
+          if (layout.in_fan[c]) precheck.push_back(layout.wall_point[c]);
+        std::sort(precheck.begin(), precheck.end());
+        precheck.erase(std::unique(precheck.begin(), precheck.end()), precheck.end());
+      }
       for (int w : precheck) excluded[w] = 1;
       n_fallback += static_cast<int>(precheck.size());
       --attempt;  // no marching happened
