@@ -74,7 +74,8 @@ void expect_meshio_counts(const std::string& file, const Extruded& e) {
   EXPECT_EQ(n["triangle"] + n["quad"], e.n_boundary_faces) << file;
 }
 
-// The cases: a layers-only cube (8 layers of wedges) and the sphere hybrid (wedges and tets).
+// The cases: a layers-only cube with fans (8 layers of wedges, hexes on the edges, tets at
+// the corners) and the sphere hybrid (wedges and tets).
 struct ExportCase {
   const char* name;
   const char* extra_args;
@@ -82,7 +83,7 @@ struct ExportCase {
   std::vector<std::string> patch_names;
 };
 
-const ExportCase kCube{"003_cube", "", "003_cube/surface.stl", {"bl_outer", "wall"}};
+const ExportCase kCube{"014_cube_fans", "", "003_cube/surface.stl", {"bl_outer", "wall"}};
 const ExportCase kSphereHybrid{"011_sphere_hybrid", "", "002_sphere/surface.stl", {"farfield", "wall"}};
 
 void expect_patches(const Extruded& e, const ExportCase& c) {
