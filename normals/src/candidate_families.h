@@ -219,6 +219,22 @@ inline void plateau_circles(const FanSites& s, const SiteSubset& sub, double tie
       }
 }
 
+// The terms a_i + b_i cos t + c_i sin t of n(t).f_i on the plateau circle
+// n(t) = c0 h + s (cos t e1 + sin t e2), for the given faces.
+inline void circle_terms(const FanGeometry& g, const PlateauCircle& circ, const int* faces, int n_faces,
+                         const Vec3& e1, const Vec3& e2, double s, std::vector<double>* ca, std::vector<double>* cb,
+                         std::vector<double>* cc) {
+  ca->resize(n_faces);
+  cb->resize(n_faces);
+  cc->resize(n_faces);
+  for (int i = 0; i < n_faces; ++i) {
+    const Vec3& f = g.face_normals[faces[i]];
+    (*ca)[i] = circ.c0 * dot(circ.h, f);
+    (*cb)[i] = s * dot(e1, f);
+    (*cc)[i] = s * dot(e2, f);
+  }
+}
+
 // The points of a plateau circle where V = min over `faces` of n.f can peak: a single
 // term's peak or the equality of two terms. ca, cb, cc are scratch of n_faces entries.
 template <class Emit>
@@ -227,17 +243,9 @@ void plateau_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* f
   Vec3 e1, e2;
   orthonormal_complement(circ.h, &e1, &e2);
   const double s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
-  ca->resize(n_faces);
-  cb->resize(n_faces);
-  cc->resize(n_faces);
   // V along the circle is min_i (a_i + b_i cos t + c_i sin t); it peaks at a single
   // term's peak or where two terms are equal.
-  for (int i = 0; i < n_faces; ++i) {
-    const Vec3& f = g.face_normals[faces[i]];
-    (*ca)[i] = circ.c0 * dot(circ.h, f);
-    (*cb)[i] = s * dot(e1, f);
-    (*cc)[i] = s * dot(e2, f);
-  }
+  circle_terms(g, circ, faces, n_faces, e1, e2, s, ca, cb, cc);
   auto at = [&](double t) { emit(circ.c0 * circ.h + s * (std::cos(t) * e1 + std::sin(t) * e2)); };
   for (int i = 0; i < n_faces; ++i) {
     at(std::atan2((*cc)[i], (*cb)[i]));
@@ -282,15 +290,7 @@ void plateau_envelope_peaks(const FanGeometry& g, const PlateauCircle& circ, con
     t0 = tc - half;
     t1 = tc + half;
   }
-  ca->resize(n_faces);
-  cb->resize(n_faces);
-  cc->resize(n_faces);
-  for (int i = 0; i < n_faces; ++i) {
-    const Vec3& f = g.face_normals[faces[i]];
-    (*ca)[i] = circ.c0 * dot(circ.h, f);
-    (*cb)[i] = s * dot(e1, f);
-    (*cc)[i] = s * dot(e2, f);
-  }
+  circle_terms(g, circ, faces, n_faces, e1, e2, s, ca, cb, cc);
   const double* a = ca->data();
   const double* b = cb->data();
   const double* c = cc->data();
