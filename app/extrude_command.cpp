@@ -10,6 +10,7 @@
 #include "blayer/core/errors.h"
 #include "blayer/core/stopwatch.h"
 #include "blayer/extruder/extrude_layers.h"
+#include "blayer/fill/fill_envelope.h"
 #include "blayer/fill/hybrid_mesh.h"
 #include "blayer/fill/tet_fill.h"
 #include "blayer/io/atomic_file.h"
@@ -49,6 +50,8 @@ ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, s
   e.solver_limits = {p.get_real("max-non-orthogonality"), p.get_real("max-skewness"), p.get_real("max-boundary-skewness"),
                      p.get_real("max-face-warp"), p.get_bool("face-pyramids-check"), p.get_bool("face-tets-check")};
   e.direction_repair_passes = p.get_int("direction-repair-passes");
+  e.fan_angle_deg = p.get_real("fan-angle");
+  e.fan_max_sector_deg = p.get_real("fan-max-sector");
   e.column_directions = p.get_string("column-directions") == "recomputed" ? ColumnDirections::kRecomputed
                                                                          : ColumnDirections::kKept;
   e.limit_policy = p.get_string("limit") == "terminate" ? LimitPolicy::kTerminate : LimitPolicy::kCompress;
@@ -118,8 +121,11 @@ FilledRegion fill_beyond_layers(const ParamValues& params, Side side, const std:
   }
   std::printf("filling with tetrahedra (TetGen)...\n");
   std::fflush(stdout);
-  FilledRegion f{fill_with_tets(result.envelope, fo), {}};
-  f.fill_to_mesh = append_fill(f.fill, result.envelope_point_ids, &result.mesh);
+  const FillEnvelope envelope = fill_envelope(result.envelope, result.envelope_point_ids, &result.mesh);
+  if (envelope.n_caps > 0)
+    std::printf("  %lld pyramids cap the quad tops of fan strips\n", static_cast<long long>(envelope.n_caps));
+  FilledRegion f{fill_with_tets(envelope.surface, fo), {}};
+  f.fill_to_mesh = append_fill(f.fill, envelope.point_ids, &result.mesh);
   const FillStats& st = f.fill.stats;
   std::printf("  %lld tets, %lld Steiner points, min dihedral %.2f deg, max radius-edge %.3f, %.2f s\n",
               static_cast<long long>(st.n_tets), static_cast<long long>(st.n_steiner_points), st.min_dihedral_deg,
@@ -187,9 +193,11 @@ void print_patches(const std::vector<BoundaryPatch>& patches) {
 }
 
 void print_written(const ExtrudeOutputs& o, const MeshCheckReport& check, double check_seconds, double total_seconds) {
-  std::printf("check: %zu cells (%zu wedges, %zu pyramids, %zu tets), 0 inverted, 0 non-conforming, "
+  const auto& n = check.totals.by_type;  // tet, pyramid, wedge, hex
+  std::printf("check: %zu cells (%zu wedges, %zu pyramids, %zu tets", check.totals.cells, n[2], n[1], n[0]);
+  if (n[3] > 0) std::printf(", %zu hexes", n[3]);
+  std::printf("), 0 inverted, 0 non-conforming, "
               "min scaled Jacobian %.4f (%.2f s)\n",
-              check.totals.cells, check.totals.by_type[2], check.totals.by_type[1], check.totals.by_type[0],
               check.min_scaled_jacobian(), check_seconds);
   std::printf("wrote %s", o.mesh.c_str());
   if (!o.envelope.empty()) std::printf(", %s", o.envelope.c_str());

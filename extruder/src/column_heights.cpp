@@ -14,12 +14,13 @@ namespace {
 std::vector<double> wall_gap_fractions(const WallTopology& topo, const ColumnPlan& plan, const ExtrusionParams& p,
                                        const StepDirections& d, const ProximityRays& rays,
                                        const std::vector<Vec3>& wall_points) {
+  const std::vector<int>& w = topo.wall_point;
   std::vector<double> fraction(topo.n_points(), 1.0);
   parallel_vertices(topo.n_points(), [&](int v) {
     if (!d.ok[v]) return;
     const double vis = std::max(d.visibility[v], 1.0 / p.max_step_stretch);
     const double path = plan.target_total[v] / vis;
-    const double gap = rays.first_hit(v, wall_points[v], d.n[v], path / p.proximity_safety);
+    const double gap = rays.first_hit(v, wall_points[w[v]], d.n[v], path / p.proximity_safety);
     if (gap < HUGE_VAL) fraction[v] = std::min(1.0, p.proximity_safety * gap * vis / plan.target_total[v]);
   });
   return fraction;
@@ -62,7 +63,19 @@ ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& topo,
                                const ExtrusionParams& p, const StepDirections& wall_directions,
                                const ProximityRays& wall_rays) {
   const int nv = topo.n_points();
-  const EdgeLengths edges = wall_edge_lengths(wall, topo);
+  EdgeLengths edges;
+  if (!topo.has_fans()) {
+    edges = wall_edge_lengths(wall, topo);
+  } else {
+    // The wall's own spacing at each column's wall point (a fan's columns share it).
+    const EdgeLengths at_point = wall_edge_lengths(wall, build_wall_topology(wall));
+    edges.mean.resize(nv);
+    edges.shortest.resize(nv);
+    for (int v = 0; v < nv; ++v) {
+      edges.mean[v] = at_point.mean[topo.wall_point[v]];
+      edges.shortest[v] = at_point.shortest[topo.wall_point[v]];
+    }
+  }
   ColumnPlan plan = plan_columns(law, law.relative ? edges.mean : std::vector<double>(nv, 1.0));
   std::vector<double> fraction = wall_gap_fractions(topo, plan, p, wall_directions, wall_rays, wall.points);
   std::vector<StopReason> reason(nv, StopReason::kWallGap);

@@ -17,4 +17,11 @@ ColumnState ColumnState::on_wall(const std::vector<Vec3>& wall_points, const std
   return c;
 }
 
+ColumnState ColumnState::on_wall(const std::vector<Vec3>& column_points, const std::vector<char>& used,
+                                 const std::vector<int>& wall_point) {
+  ColumnState c = on_wall(column_points, used);
+  for (int v = 0; v < c.size(); ++v) c.top_id[v] = wall_point[v];
+  return c;
+}
+
 }  // namespace blayer

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
@@ -11,6 +13,7 @@
 #include "blayer/extruder/column_state.h"
 #include "blayer/extruder/front_checker.h"
 #include "blayer/extruder/layer_assembly.h"
+#include "blayer/extruder/layer_cells.h"
 #include "blayer/extruder/layer_steps.h"
 #include "blayer/extruder/step_directions.h"
 #include "blayer/extruder/wall_planes.h"
@@ -37,6 +40,13 @@ void check_wall(const TriSurface& wall) {
 // Every cell of the layer mesh passes the exact validity test: what the per-layer checks
 // guarantee, re-established from scratch (checked builds only; the caller's mesh check
 // is the run's decision).
+// Marching attempts with fans: the first, and reruns after fan points fell back to one
+// column. A failed first layer at a fan point is rare (the fan's cells are as valid as
+// the wall's own where the sectors are smooth), so two reruns cover what happens.
+constexpr int kMaxFanAttempts = 3;
+// Rounds of the straight-layer precheck before every remaining fan point falls back.
+constexpr int kMaxPrecheckRounds = 3;
+
 [[maybe_unused]] bool every_cell_valid(const VolumeMesh& m) {
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
     Vec3 corners[8];
@@ -53,35 +63,128 @@ std::vector<char> growing(const ColumnState& c) {
   return g;
 }
 
-}  // namespace
 
-ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& params,
-                               const std::function<void(int, int)>& progress) {
+// Wall directions: fan columns take their sector or sub-normal directions; a single
+// column at a ridge end, whose fan on the front holds the strip ends' (still flat)
+// triangles, takes the wall's own normal at its point.
+StepDirections wall_directions(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
+                               const WallTopology& topo, const WallPlanes& planes, const ExtrusionParams& params) {
+  if (!layout.has_fans()) return compute_step_directions(layout.front, topo, topo.used, params);
+  PrescribedDirections fan{layout.direction, std::vector<double>(layout.n_columns(), 0.0)};
+  for (const LayerElement& e : layout.elements) {
+    if (e.kind != ElementKind::kStripEnd) continue;
+    const int c = e.column[0];
+    if (norm2(fan.n[c]) > 0.0) continue;
+    const VertexNormal n = surface_point_normal(wall, wall_topo, layout.wall_point[c], params.normal_method);
+    if (n.status != NormalStatus::kNoVisibleDirection && is_finite(n.normal)) fan.n[c] = n.normal;
+  }
+  for (int c = 0; c < layout.n_columns(); ++c)
+    if (norm2(fan.n[c]) > 0.0) fan.visibility[c] = planes.visibility(c, fan.n[c]);
+  return compute_step_directions(layout.front, topo, topo.used, params, &fan);
+}
+
+// Fan points whose fan cells (strips, strip ends, corner patches, the triangles split
+// at ridge ends and the wall triangles on fan columns) fail the exact validity test on
+// straight columns at their planned heights, layer by layer: short ridge edges under
+// tall layers fold them. Found before marching, they fall back to one column without a
+// marching rerun.
+std::vector<int> fan_points_failing_straight_layers(const TriSurface& wall, const ColumnLayout& layout,
+                                                    const WallPlanes& planes, const StepDirections& dirs,
+                                                    const ColumnPlan& plan, const ExtrusionParams& params) {
+  const int nv = static_cast<int>(wall.points.size()), nc = layout.n_columns();
+  const std::size_t n_wall_elements = wall.triangles.size();
+  std::vector<std::size_t> checked;
+  for (std::size_t i = 0; i < layout.elements.size(); ++i) {
+    const LayerElement& e = layout.elements[i];
+    bool fan = i >= n_wall_elements || e.split_at >= 0;
+    for (int j = 0; j < 3 && !fan; ++j) fan = layout.in_fan[e.column[j]];
+    if (fan) checked.push_back(i);
+  }
+  std::vector<char> failed(nv, 0);
+  // A fan column without a usable direction stops on the wall, and its fan with it.
+  for (int c = 0; c < nc; ++c)
+    if (layout.in_fan[c] && !dirs.ok[c]) failed[layout.wall_point[c]] = 1;
+  // Column tops: ids nv + c (the layer's base) and nv + nc + c (one layer up).
+  std::vector<Vec3> base(nc), up(nc);
+  for (int c = 0; c < nc; ++c) base[c] = wall.points[layout.wall_point[c]];
+  for (int k = 0; k < plan.n_layers; ++k) {
+    std::vector<char> grows(nc, 0);
+    for (int c = 0; c < nc; ++c) {
+      if (!dirs.ok[c] || plan.planned_layers[c] <= k) continue;
+      const Vec3& p = wall.points[layout.wall_point[c]];
+      const double h = plan.cumulative(c, k);
+      up[c] = p + std::clamp(planes.step_to_height(c, p, dirs.n[c], h), h, params.max_step_stretch * h) * dirs.n[c];
+      grows[c] = 1;
+    }
+    for (std::size_t i : checked) {
+      const LayerElement& e = layout.elements[i];
+      const int n = e.kind == ElementKind::kStrip ? 4 : 3;
+      std::array<std::int64_t, 4> bottom{}, top{};
+      std::array<bool, 4> g{};
+      for (int j = 0; j < n; ++j) {
+        const int c = e.column[j];
+        bottom[j] = k == 0 ? layout.wall_point[c] : nv + c;
+        top[j] = static_cast<std::int64_t>(nv) + nc + c;
+        g[j] = grows[c];
+      }
+      LayerCell cells[2];
+      const int n_cells = element_layer_cells(e, bottom, top, g, cells);
+      bool ok = true;
+      for (int q = 0; q < n_cells && ok; ++q) {
+        Vec3 corners[8];
+        for (int j = 0; j < corner_count(cells[q].type); ++j) {
+          const std::int64_t id = cells[q].nodes[j];
+          corners[j] = id < nv ? wall.points[id] : id < nv + nc ? base[id - nv] : up[id - nv - nc];
+        }
+        ok = cell_validity(cells[q].type, corners) == Validity::kValid;
+      }
+      if (ok) continue;
+      for (int j = 0; j < n; ++j)
+        if (layout.in_fan[e.column[j]]) failed[layout.wall_point[e.column[j]]] = 1;
+    }
+    for (int c = 0; c < nc; ++c)
+      if (grows[c]) base[c] = up[c];
+  }
+  std::vector<int> out;
+  for (int w = 0; w < nv; ++w)
+    if (failed[w]) out.push_back(w);
+  return out;
+}
+
+// One marching run on a column layout (fan_layout.h). When fan points fail on straight
+// columns before marching (fan_points_failing_straight_layers), returns at once with
+// them in *fan_failures and no mesh.
+ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
+                      const WallTopology& topo, const ExtrusionParams& params,
+                      const std::function<void(int, int)>& progress, std::vector<int>* fan_failures) {
   const Stopwatch total;
-  check_extrusion_params(params);
-  check_wall(wall);
   ExtrusionResult res;
   ExtrusionReport& rep = res.report;
   rep.growth = resolve_growth_law(params.growth);
   rep.n_wall_points = static_cast<int>(wall.points.size());
   rep.n_wall_triangles = static_cast<int>(wall.triangles.size());
 
-  // Setup: topology, wall directions, checker trees, column plan.
+  // Setup: wall directions, checker trees, column plan.
   Stopwatch phase;
-  const WallTopology topo = build_wall_topology(wall, params.symmetry);
-  const WallPlanes planes(wall, topo);
-  StepDirections dirs = compute_step_directions(wall, topo, topo.used, params);
-  FrontChecker checker(wall, topo, params);
+  const WallPlanes planes(wall, layout, topo);
+  const TriSurface& start = layout.front;
+  StepDirections dirs = wall_directions(wall, wall_topo, layout, topo, planes, params);
+  FrontChecker checker(wall, layout, topo, params);
   ColumnPlan plan = plan_column_heights(wall, topo, rep.growth, params, dirs, checker.wall_rays());
-  ColumnState columns = ColumnState::on_wall(wall.points, topo.used);
-  LayerAssembler assembler(wall, dirs);
+  if (layout.has_fans()) {
+    *fan_failures = fan_points_failing_straight_layers(wall, layout, planes, dirs, plan, params);
+    if (!fan_failures->empty()) return res;
+  }
+  ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
+  LayerAssembler assembler(wall, layout, dirs);
   TriSurface front;
-  front.triangles = wall.triangles;
-  std::vector<Vec3> next(wall.points.size());
+  front.triangles = start.triangles;
+  std::vector<Vec3> next(start.points.size());
   rep.t_setup = phase.seconds();
 
   for (int k = 0; k < rep.growth.layers; ++k) {
     stop_planned_ends(k, plan, &columns);
+    stop_fan_groups(k, topo, &plan, &columns);
     const std::vector<char> active = growing(columns);
     if (std::find(active.begin(), active.end(), 1) == active.end()) break;
 
@@ -97,16 +200,18 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
         end_column_after(&plan, v, k, StopReason::kVisibility);
         columns.stop(v, StopReason::kVisibility);
       }
+    stop_fan_groups(k, topo, &plan, &columns);
     rep.t_normals += phase.seconds();
 
     phase.restart();
     checker.begin_layer(k, columns.top, columns.layers);
     limit_by_proximity(k, checker.front_rays(), topo, planes, dirs, params, &plan, &columns);
+    stop_fan_groups(k, topo, &plan, &columns);
     rep.t_proximity += phase.seconds();
 
     phase.restart();
     const std::vector<char> grows =
-        settle_layer(k, wall.triangles, topo, planes, params, &checker, &dirs, &plan, &columns, &next);
+        settle_layer(k, start.triangles, topo, planes, params, &checker, &dirs, &plan, &columns, &next);
     rep.t_checks += phase.seconds();
     for (int v = 0; v < columns.size(); ++v)
       if (grows[v] && planes.height_above(v, next[v]) < (1.0 - kShortfallTolerance) * plan.cumulative(v, k))
@@ -125,16 +230,20 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   res.mesh = assembler.finish(columns);
   BLAYER_EXPENSIVE_ASSERT(every_cell_valid(res.mesh));
   res.envelope.points = columns.top;
-  res.envelope.triangles = wall.triangles;
+  res.envelope.triangles = start.triangles;
   res.envelope_point_ids = columns.top_id;
   res.column_layers = columns.layers;
   res.stop_reason = columns.reason;
+  res.column_wall_point = layout.wall_point;
+  res.front_wall_face = layout.wall_face;
   rep.columns_per_layer = assembler.columns_per_layer();
+  rep.fans.cells = assembler.fan_cells();
+  rep.fans.solver_limits_skipped = checker.limits_skipped();
   rep.min_visibility = rep.columns_per_layer.empty() ? 0.0 : assembler.min_visibility();
   rep.t_assembly += phase.seconds();
 
   phase.restart();
-  summarise_extrusion(wall, topo, plan, columns, res.mesh, &rep);
+  summarise_extrusion(wall, layout, topo, planes, plan, columns, res.mesh, &rep);
   if (topo.plane) {
     for (int v = 0; v < topo.n_points(); ++v) rep.n_symmetry_columns += topo.on_plane[v];
     const std::vector<int>& column_of = assembler.point_column();
@@ -146,6 +255,82 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   rep.t_report = phase.seconds();
   rep.t_total = total.seconds();
   return res;
+}
+
+// Fan points none of whose columns grew a layer because a cell, a collision or the
+// visibility stopped them: they fall back to one column in the next attempt.
+std::vector<int> failed_fan_points(const ColumnLayout& layout, const ExtrusionResult& res) {
+  std::vector<int> failed;
+  for (int c = 0; c < layout.n_columns(); ++c) {
+    if (!layout.in_fan[c] || res.column_layers[c] > 0) continue;
+    const StopReason r = res.stop_reason[c];
+    if (r == StopReason::kQuality || r == StopReason::kCollision || r == StopReason::kVisibility)
+      failed.push_back(layout.wall_point[c]);
+  }
+  std::sort(failed.begin(), failed.end());
+  failed.erase(std::unique(failed.begin(), failed.end()), failed.end());
+  return failed;
+}
+
+}  // namespace
+
+ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& params,
+                               const std::function<void(int, int)>& progress) {
+  const Stopwatch total;
+  check_extrusion_params(params);
+  check_wall(wall);
+  const WallTopology wall_topo = build_wall_topology(wall, params.symmetry);
+  if (!(params.fan_angle_deg > 0.0)) {
+    std::vector<int> none;
+    return march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, &none);
+  }
+  // Fans; a fan point whose fan cannot grow its first layer falls back to one column,
+  // and the extrusion is marched again (each attempt removes at least one fan point).
+  const FanParams fp{params.fan_angle_deg, params.fan_max_sector_deg};
+  std::vector<char> excluded = wall_topo.on_plane;
+  int n_fallback = 0, precheck_rounds = 0;
+  double t_layout = 0.0;
+  for (int attempt = 0;; ++attempt) {
+    const Stopwatch layout_time;
+    const ColumnLayout layout = build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded);
+    t_layout += layout_time.seconds();
+    std::vector<int> precheck;
+    ExtrusionResult res =
+        march(wall, wall_topo, layout, build_column_topology(layout, params.symmetry), params, progress, &precheck);
+    if (!precheck.empty()) {
+      // Each round rebuilds the layout and its directions: when most fans fail, or
+      // after a few rounds, every remaining fan point falls back at once.
+      if (2 * static_cast<int>(precheck.size()) > layout.n_fan_points || ++precheck_rounds >= kMaxPrecheckRounds) {
+        precheck.clear();
+        for (int c = 0; c < layout.n_columns(); ++c)
+          if (layout.in_fan[c]) precheck.push_back(layout.wall_point[c]);
+        std::sort(precheck.begin(), precheck.end());
+        precheck.erase(std::unique(precheck.begin(), precheck.end()), precheck.end());
+      }
+      for (int w : precheck) excluded[w] = 1;
+      n_fallback += static_cast<int>(precheck.size());
+      --attempt;  // no marching happened
+      continue;
+    }
+    const std::vector<int> failed = failed_fan_points(layout, res);
+    if (failed.empty() || attempt + 1 >= kMaxFanAttempts) {
+      FanSummary& f = res.report.fans;
+      f.points = layout.n_fan_points;
+      f.columns = 0;
+      for (char x : layout.in_fan) f.columns += x;
+      f.ridge_edges = layout.n_ridge_edges;
+      f.corners = layout.n_corners;
+      f.ridge_ends = layout.n_ridge_ends;
+      f.fallback_points = n_fallback;
+      f.failed_points = static_cast<int>(failed.size());
+      f.attempts = attempt + 1;
+      res.report.t_setup += t_layout;
+      res.report.t_total = total.seconds();
+      return res;
+    }
+    for (int w : failed) excluded[w] = 1;
+    n_fallback += static_cast<int>(failed.size());
+  }
 }
 
 }  // namespace blayer

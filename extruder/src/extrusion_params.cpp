@@ -32,6 +32,8 @@ void check_extrusion_params(const ExtrusionParams& p) {
     fail("max_layer_aspect must be >= 0 (0 disables the layer end)");
   if (!(p.min_visibility > 0.0 && p.min_visibility < 1.0)) fail("min_visibility must be in (0, 1)");
   if (!(p.max_step_stretch >= 1.0) || !std::isfinite(p.max_step_stretch)) fail("max_step_stretch must be >= 1");
+  if (!(p.fan_angle_deg >= 0.0 && p.fan_angle_deg < 180.0)) fail("fan_angle_deg must be in [0, 180) (0 disables fans)");
+  if (!(p.fan_max_sector_deg >= 5.0 && p.fan_max_sector_deg <= 90.0)) fail("fan_max_sector_deg must be in [5, 90]");
   const AcceptanceLimits& a = p.solver_limits;
   auto angle_ok = [](double x) { return x >= 0.0 && x <= 180.0; };
   if (!angle_ok(a.max_non_orthogonality_deg))

@@ -47,41 +47,35 @@ void count_cells(const VolumeMesh& mesh, ExtrusionReport* r) {
       case CellType::kWedge: ++r->n_wedges; break;
       case CellType::kPyramid: ++r->n_pyramids; break;
       case CellType::kTet: ++r->n_tets; break;
-      case CellType::kHex: break;
+      case CellType::kHex: ++r->n_hexes; break;
     }
   }
   r->n_points = static_cast<std::int64_t>(mesh.points.size());
 }
 
-// Heights above the wall (min over incident wall face planes), achieved thickness
-// fractions and stops per reason.
-void summarise_heights(const TriSurface& wall, const WallTopology& topo, const ColumnPlan& plan,
-                       const ColumnState& columns, const VolumeMesh& mesh, ExtrusionReport* r) {
-  const int nv = topo.n_points(), nf = static_cast<int>(wall.triangles.size());
-  std::vector<Vec3> wall_fn(nf);
-  tbb::parallel_for(0, nf, [&](int f) { wall_fn[f] = normalized(triangle_area_vector(wall, wall.triangles[f])); });
-  const Csr& vtri = topo.vertex_triangles;
-  auto height_above = [&](int v, const Vec3& q) {
-    double m = HUGE_VAL;
-    for (const int* f = vtri.begin(v); f != vtri.end(v); ++f) m = std::min(m, dot(q - wall.points[v], wall_fn[*f]));
-    return m;
-  };
-  std::vector<double> column_area(nv, 0.0);
-  for (const Triangle& t : wall.triangles) {
-    const double a = 0.5 * norm(triangle_area_vector(wall, t)) / 3.0;
-    for (int v : t) column_area[v] += a;
+// Heights above the wall (min over each column's wall planes), achieved thickness
+// fractions and stops per reason, over the columns that stand on wall triangles.
+void summarise_heights(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+                       const WallPlanes& planes, const ColumnPlan& plan, const ColumnState& columns,
+                       ExtrusionReport* r) {
+  const int nc = topo.n_points();
+  std::vector<double> column_area(nc, 0.0);
+  for (std::size_t t = 0; t < layout.front.triangles.size(); ++t) {
+    if (layout.wall_face[t] < 0) continue;
+    const double a = 0.5 * norm(triangle_area_vector(wall, wall.triangles[layout.wall_face[t]])) / 3.0;
+    for (int v : layout.front.triangles[t]) column_area[v] += a;
   }
   double total_area = 0.0;
   int n_used = 0;
   RangeAccumulator fh, th, tf;
-  for (int v = 0; v < nv; ++v) {
-    if (!topo.used[v]) continue;
+  for (int v = 0; v < nc; ++v) {
+    if (!topo.used[v] || layout.faceless[v]) continue;
     ++n_used;
     total_area += column_area[v];
-    const double total = columns.layers[v] > 0 ? height_above(v, columns.top[v]) : 0.0;
+    const double total = columns.layers[v] > 0 ? planes.height_above(v, columns.top[v]) : 0.0;
     th.add(total);
     tf.add(total / plan.target_total[v]);
-    if (columns.layers[v] > 0) fh.add(height_above(v, columns.first[v]));
+    if (columns.layers[v] > 0) fh.add(planes.height_above(v, columns.first[v]));
     if (columns.layers[v] == r->growth.layers) ++r->n_complete_columns;
     else ++r->stopped_columns[static_cast<int>(columns.reason[v])];
     if (plan.limit[v] != StopReason::kNone) ++r->limited_columns[static_cast<int>(plan.limit[v])];
@@ -100,15 +94,17 @@ void summarise_heights(const TriSurface& wall, const WallTopology& topo, const C
   r->first_height = fh.result();
   r->total_thickness = th.result();
   r->thickness_fraction = tf.result();
-  (void)mesh;
 }
 
-void summarise_coverage(const TriSurface& wall, const ColumnState& columns, ExtrusionReport* r) {
+void summarise_coverage(const TriSurface& wall, const ColumnLayout& layout, const ColumnState& columns,
+                        ExtrusionReport* r) {
   const int n = r->growth.layers;
   double area = 0.0, area_full = 0.0;
   int n_full = 0;
-  for (const Triangle& t : wall.triangles) {
-    const double a = 0.5 * norm(triangle_area_vector(wall, t));
+  for (std::size_t f = 0; f < layout.front.triangles.size(); ++f) {
+    if (layout.wall_face[f] < 0) continue;
+    const Triangle& t = layout.front.triangles[f];
+    const double a = 0.5 * norm(triangle_area_vector(wall, wall.triangles[layout.wall_face[f]]));
     area += a;
     if (columns.layers[t[0]] == n && columns.layers[t[1]] == n && columns.layers[t[2]] == n) {
       ++n_full;
@@ -132,11 +128,12 @@ std::string percent(double x) {
 
 }  // namespace
 
-void summarise_extrusion(const TriSurface& wall, const WallTopology& topo, const ColumnPlan& plan,
-                         const ColumnState& columns, const VolumeMesh& mesh, ExtrusionReport* r) {
+void summarise_extrusion(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+                         const WallPlanes& planes, const ColumnPlan& plan, const ColumnState& columns,
+                         const VolumeMesh& mesh, ExtrusionReport* r) {
   count_cells(mesh, r);
-  summarise_heights(wall, topo, plan, columns, mesh, r);
-  summarise_coverage(wall, columns, r);
+  summarise_heights(wall, layout, topo, planes, plan, columns, r);
+  summarise_coverage(wall, layout, columns, r);
   if (!r->growth.relative) {
     r->fidelity = measure_layer_fidelity(mesh, wall,
                                          {r->growth.first_height, r->growth.total_thickness, r->growth.layers});
@@ -193,14 +190,22 @@ std::string format_extrusion_report(const ExtrusionReport& r) {
          f.top_over_T_planes.p5, f.top_over_T_planes.p50, f.top_over_T_distance.p5, f.top_over_T_distance.p50,
          percent(f.top_ge_90pct_planes).c_str(), percent(f.top_ge_90pct_distance).c_str());
   }
+  if (r.fans.attempts > 0)
+    line(&s, "fans                %d points on %d ridge edges (%d ridge ends, %d corners), %d columns, %lld cells; "
+         "%d points fell back to one column",
+         r.fans.points, r.fans.ridge_edges, r.fans.ridge_ends, r.fans.corners, r.fans.columns,
+         static_cast<long long>(r.fans.cells), r.fans.fallback_points);
+  if (r.fans.solver_limits_skipped)
+    line(&s, "solver limits       not applied with fans: cells are checked exactly, faces not against the limits");
   if (r.n_symmetry_columns > 0)
     line(&s, "symmetry plane      %d columns on it, their points at most %.3g from it", r.n_symmetry_columns,
          r.max_symmetry_distance);
   std::string per_layer;
   for (int n : r.columns_per_layer) per_layer += " " + std::to_string(n);
   line(&s, "columns per layer  %s", per_layer.c_str());
-  line(&s, "cells               %lld wedges, %lld pyramids, %lld tets; %lld points",
+  line(&s, "cells               %lld wedges, %lld pyramids, %lld tets%s; %lld points",
        static_cast<long long>(r.n_wedges), static_cast<long long>(r.n_pyramids), static_cast<long long>(r.n_tets),
+       r.n_hexes > 0 ? (", " + std::to_string(r.n_hexes) + " hexes").c_str() : "",
        static_cast<long long>(r.n_points));
   line(&s, "min visibility      %.4f", r.min_visibility);
   line(&s, "time [s]            setup %.3f  normals %.3f  proximity %.3f  checks %.3f  assembly %.3f  report %.3f  "
@@ -258,7 +263,18 @@ nlohmann::json extrusion_report_to_json(const ExtrusionReport& r) {
                   {"thin_area", r.thin.total_area},
                   {"thin_columns_by_reason", by_reason(r.thin.columns)},
                   {"thin_area_by_reason", by_reason(r.thin.area)}};
-  j["cells"] = {{"wedges", r.n_wedges}, {"pyramids", r.n_pyramids}, {"tets", r.n_tets}, {"points", r.n_points}};
+  j["cells"] = {{"wedges", r.n_wedges}, {"pyramids", r.n_pyramids}, {"tets", r.n_tets},
+                {"hexes", r.n_hexes},   {"points", r.n_points}};
+  j["fans"] = {{"points", r.fans.points},
+               {"columns", r.fans.columns},
+               {"ridge_edges", r.fans.ridge_edges},
+               {"corners", r.fans.corners},
+               {"ridge_ends", r.fans.ridge_ends},
+               {"fallback_points", r.fans.fallback_points},
+               {"failed_points", r.fans.failed_points},
+               {"attempts", r.fans.attempts},
+               {"cells", r.fans.cells},
+               {"solver_limits_skipped", r.fans.solver_limits_skipped}};
   j["min_visibility"] = r.min_visibility;
   j["time_seconds"] = {{"setup", r.t_setup},   {"normals", r.t_normals},   {"proximity", r.t_proximity},
                        {"checks", r.t_checks}, {"assembly", r.t_assembly}, {"report", r.t_report},

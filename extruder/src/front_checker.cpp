@@ -80,10 +80,22 @@ void unit_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
 }  // namespace
 
 FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params)
-    : FrontChecker(wall, topo, params.check_collisions) {
+    : FrontChecker(wall, single_column_layout(wall), topo, params) {}
+
+FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+                           const ExtrusionParams& params)
+    : FrontChecker(wall, layout, topo, params.check_collisions) {
+  if (!params.solver_limits.any()) return;
+  // The acceptance passes judge the cells of the wall triangles, which are the first
+  // front triangles, on their columns (fan_layout.h).
+  for (int f = 0; f < nf_; ++f)
+    if (layout.wall_face[f] != f || elements_[f].kind != ElementKind::kTriangle) {
+      limits_skipped_ = true;
+      return;
+    }
   limits_ = params.solver_limits;
-  if (!limits_.any()) return;
-  build_edge_neighbours(wall);
+  acc_tris_.assign(front_.begin(), front_.begin() + nf_);
+  build_edge_neighbours(wall, layout);
   centre_.resize(nf_);
   below_centre_.resize(nf_);
   cap_bad_.assign(nf_, 0);
@@ -91,10 +103,13 @@ FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, con
   side_geo_.resize(3 * static_cast<std::size_t>(nf_));
 }
 
-// The triangle across each wall edge (core/edge_topology.h): the other use of a
-// manifold edge; -1 on an open edge, -2 on a non-manifold or inconsistently oriented one.
-void FrontChecker::build_edge_neighbours(const TriSurface& wall) {
-  const std::vector<Triangle>& tris = *triangles_;
+// The wall triangle across each edge of a wall triangle's cell (core/edge_topology.h on
+// the wall triangles over their columns): the other use of a manifold edge; -1 on an
+// open wall edge; -2 where the cell across is not a wall triangle's (a fan strip beside
+// a ridge edge), is not judged (a wall triangle split at a ridge end) or the edge is
+// non-manifold or inconsistently oriented.
+void FrontChecker::build_edge_neighbours(const TriSurface& wall, const ColumnLayout& layout) {
+  const std::vector<Triangle>& tris = acc_tris_;
   auto slot_of = [&](int f, int lo, int hi) {
     for (int e = 0; e < 3; ++e) {
       const int a = tris[f][e], b = tris[f][(e + 1) % 3];
@@ -105,11 +120,23 @@ void FrontChecker::build_edge_neighbours(const TriSurface& wall) {
   edge_neighbour_.assign(3 * static_cast<std::size_t>(nf_), -2);
   side_slot_.resize(edge_neighbour_.size());
   for (std::size_t i = 0; i < side_slot_.size(); ++i) side_slot_[i] = static_cast<int>(i);
-  for (const SurfaceEdge& edge : build_edge_topology(wall).edges) {
+  skip_acceptance_.assign(nf_, 0);
+  for (int f = 0; f < nf_; ++f) skip_acceptance_[f] = elements_[f].split_at >= 0;
+  std::vector<char> open_wall_edge(3 * static_cast<std::size_t>(nf_), 0);
+  for (const SurfaceEdge& edge : build_edge_topology(wall).edges)
+    if (edge.kind == EdgeKind::kBoundary)
+      for (int e = 0; e < 3; ++e) {
+        const Triangle& t = wall.triangles[edge.triangle[0]];
+        if (std::min(t[e], t[(e + 1) % 3]) == edge.lo && std::max(t[e], t[(e + 1) % 3]) == edge.hi)
+          open_wall_edge[3 * edge.triangle[0] + e] = 1;
+      }
+  const TriSurface cells{layout.front.points, acc_tris_};
+  for (const SurfaceEdge& edge : build_edge_topology(cells).edges) {
     const int f = edge.triangle[0], g = edge.triangle[1];
-    if (edge.kind == EdgeKind::kBoundary) edge_neighbour_[slot_of(f, edge.lo, edge.hi)] = -1;
-    if (edge.kind != EdgeKind::kManifold) continue;
-    const int sf = slot_of(f, edge.lo, edge.hi), sg = slot_of(g, edge.lo, edge.hi);
+    const int sf = slot_of(f, edge.lo, edge.hi);
+    if (edge.kind == EdgeKind::kBoundary && open_wall_edge[sf]) edge_neighbour_[sf] = -1;
+    if (edge.kind != EdgeKind::kManifold || skip_acceptance_[f] || skip_acceptance_[g]) continue;
+    const int sg = slot_of(g, edge.lo, edge.hi);
     edge_neighbour_[sf] = g;
     edge_neighbour_[sg] = f;
     side_slot_[sf] = side_slot_[sg] = std::min(sf, sg);  // the smaller triangle's
@@ -117,12 +144,23 @@ void FrontChecker::build_edge_neighbours(const TriSurface& wall) {
 }
 
 FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions)
+    : FrontChecker(wall, single_column_layout(wall), topo, check_collisions) {}
+
+FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+                           bool check_collisions)
     : triangles_(&wall.triangles),
+      front_(layout.front.triangles),
+      elements_(layout.elements),
+      element_of_triangle_(layout.element_of_triangle),
+      wall_point_(layout.wall_point),
       plane_(topo.plane),
       on_plane_(topo.on_plane),
       wall_points_(&wall.points),
       nv_(static_cast<int>(wall.points.size())),
+      nc_(layout.n_columns()),
       nf_(static_cast<int>(wall.triangles.size())),
+      nt_(static_cast<int>(layout.front.triangles.size())),
+      ne_(static_cast<int>(layout.elements.size())),
       check_collisions_(check_collisions) {
   std::vector<Box> wall_boxes(nf_);
   tbb::parallel_for(0, nf_, [&](int f) {
@@ -131,21 +169,32 @@ FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, boo
   });
   wall_tree_.build(wall_boxes);
   unit_normals(wall.triangles, wall.points, &wall_normal_);
-  cur_tree_ = wall_tree_;
-  new_tree_ = wall_tree_;
-  cur_boxes_.resize(nf_);
-  new_boxes_.resize(nf_);
-  grows_.assign(nv_, 0);
-  prev_grows_.assign(nv_, 0);
-  moved_.assign(nv_, 0);
-  prev_next_.resize(nv_);
-  for (auto* v : {&bad_cell_, &invalid_, &collided_, &tri_moved_, &tri_grows_, &query_}) v->assign(nf_, 0);
+  if (nt_ == nf_ && front_ == wall.triangles) {
+    cur_tree_ = wall_tree_;
+  } else {
+    std::vector<Box> front_boxes(nt_);
+    const std::vector<Vec3>& P = layout.front.points;
+    tbb::parallel_for(0, nt_, [&](int f) {
+      const Triangle& t = front_[f];
+      front_boxes[f] = Box::of_triangle(P[t[0]], P[t[1]], P[t[2]]);
+    });
+    cur_tree_.build(front_boxes);
+  }
+  new_tree_ = cur_tree_;
+  cur_boxes_.resize(nt_);
+  new_boxes_.resize(nt_);
+  grows_.assign(nc_, 0);
+  prev_grows_.assign(nc_, 0);
+  moved_.assign(nc_, 0);
+  prev_next_.resize(nc_);
+  for (auto* v : {&bad_cell_, &invalid_, &elem_moved_}) v->assign(ne_, 0);
+  for (auto* v : {&collided_, &tri_moved_, &tri_grows_, &query_}) v->assign(nt_, 0);
   wall_tris_.resize(nf_);
-  cur_tris_.resize(nf_);
-  new_tris_.resize(nf_);
-  cur_is_wall_.assign(nf_, 0);
+  cur_tris_.resize(nt_);
+  new_tris_.resize(nt_);
+  cur_is_wall_.assign(nt_, 0);
   if (check_collisions_) {
-    soup_.resize(3 * static_cast<std::size_t>(nv_));
+    soup_.resize(static_cast<std::size_t>(nv_) + 2 * static_cast<std::size_t>(nc_));
     std::copy(wall.points.begin(), wall.points.end(), soup_.begin());
     tbb::parallel_for(0, nf_, [&](int f) {
       const Triangle& t = wall.triangles[f];
@@ -157,6 +206,8 @@ FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, boo
 ProximityRays FrontChecker::wall_rays() const {
   ProximityRays r;
   r.triangles = triangles_;
+  r.front_triangles = &front_;
+  r.wall_point = &wall_point_;
   r.wall_points = wall_points_;
   r.wall_tree = &wall_tree_;
   r.wall_normal = &wall_normal_;
@@ -177,27 +228,32 @@ ProximityRays FrontChecker::front_rays() const {
   return r;
 }
 
+namespace {
+
+bool names_a_point_twice(const IndexedTriangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
+
+}  // namespace
+
 void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) {
   k_ = k;
   cur_points_ = &top;
   layers_ = &layers;
-  const std::vector<Triangle>& tris = *triangles_;
   if (k > 0) {
-    tbb::parallel_for(0, nf_, [&](int f) {
-      const Triangle& t = tris[f];
+    tbb::parallel_for(0, nt_, [&](int f) {
+      const Triangle& t = front_[f];
       cur_boxes_[f] = Box::of_triangle(top[t[0]], top[t[1]], top[t[2]]);
     });
     cur_tree_.refit(cur_boxes_);
-    unit_normals(tris, top, &cur_normal_);
+    unit_normals(front_, top, &cur_normal_);
   }
   if (check_collisions_) {
     std::copy(top.begin(), top.end(), soup_.begin() + nv_);
     if (k > 0) {
-      auto cur_id = [&](int v) -> std::int64_t { return layers[v] == 0 ? v : nv_ + v; };
-      tbb::parallel_for(0, nf_, [&](int f) {
-        const Triangle& t = tris[f];
+      tbb::parallel_for(0, nt_, [&](int f) {
+        const Triangle& t = front_[f];
         cur_tris_[f] = {cur_id(t[0]), cur_id(t[1]), cur_id(t[2])};
-        cur_is_wall_[f] = layers[t[0]] == 0 && layers[t[1]] == 0 && layers[t[2]] == 0;
+        cur_is_wall_[f] = (layers[t[0]] == 0 && layers[t[1]] == 0 && layers[t[2]] == 0) ||
+                          names_a_point_twice(cur_tris_[f]);
       });
     }
   }
@@ -218,7 +274,7 @@ void FrontChecker::cells_below(int k, const std::vector<Vec3>& top, const std::v
   // The last attempt of layer k - 1 is normally what was committed; its centres are
   // then the ones wanted.
   bool last_attempt_committed = true;
-  for (int v = 0; v < nv_ && last_attempt_committed; ++v) {
+  for (int v = 0; v < nc_ && last_attempt_committed; ++v) {
     const bool grew = layers[v] >= k;
     last_attempt_committed = grew == bool(prev_grows_[v]) && (!grew || top[v] == prev_next_[v]);
   }
@@ -226,7 +282,7 @@ void FrontChecker::cells_below(int k, const std::vector<Vec3>& top, const std::v
     below_centre_.swap(centre_);
     return;
   }
-  const std::vector<Triangle>& tris = *triangles_;
+  const std::vector<Triangle>& tris = acc_tris_;
   tbb::parallel_for(0, nf_, [&](int f) {
     const Triangle& t = tris[f];
     const std::array<bool, 3> g = {layers[t[0]] >= k, layers[t[1]] >= k, layers[t[2]] >= k};
@@ -241,21 +297,32 @@ Box FrontChecker::soup_box(const IndexedTriangle& t) const {
 }
 
 void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<Vec3>& next) {
-  const std::vector<Triangle>& tris = *triangles_;
-  tbb::parallel_for(0, nf_, [&](int f) {
-    if (!tri_moved_[f]) return;
-    const Triangle& t = tris[f];
-    const std::array<bool, 3> g = {bool(grows_[t[0]]), bool(grows_[t[1]]), bool(grows_[t[2]])};
-    LayerCell cell;
-    invalid_[f] = 0;
-    // Local ids: 0..2 the bottoms, 3..5 the tops of the triangle's columns.
-    if (!layer_cell({0, 1, 2}, {3, 4, 5}, g, &cell)) return;
-    Vec3 c[6];
-    for (int i = 0; i < corner_count(cell.type); ++i) {
-      const int id = static_cast<int>(cell.nodes[i]);
-      c[i] = id < 3 ? top[t[id]] : next[t[id - 3]];
+  const std::int64_t n_cur = static_cast<std::int64_t>(nv_) + nc_;
+  auto position = [&](std::int64_t id) -> const Vec3& {
+    if (id < nv_) return (*wall_points_)[id];
+    if (id < n_cur) return top[id - nv_];
+    return next[id - n_cur];
+  };
+  tbb::parallel_for(0, ne_, [&](int e) {
+    if (!elem_moved_[e]) return;
+    const LayerElement& el = elements_[e];
+    const int n = el.kind == ElementKind::kStrip ? 4 : 3;
+    std::array<std::int64_t, 4> bottom{}, up{};
+    std::array<bool, 4> g{};
+    for (int i = 0; i < n; ++i) {
+      const int c = el.column[i];
+      bottom[i] = cur_id(c);
+      up[i] = n_cur + c;
+      g[i] = grows_[c];
     }
-    invalid_[f] = !cell_is_valid(cell.type, c);
+    LayerCell cells[2];
+    invalid_[e] = 0;
+    const int n_cells = element_layer_cells(el, bottom, up, g, cells);
+    for (int i_c = 0; i_c < n_cells; ++i_c) {
+      Vec3 corners[8];
+      for (int i = 0; i < corner_count(cells[i_c].type); ++i) corners[i] = position(cells[i_c].nodes[i]);
+      if (!cell_is_valid(cells[i_c].type, corners)) invalid_[e] = 1;
+    }
   });
   if (limits_.any()) {
     check_acceptance(top, next);
@@ -269,7 +336,7 @@ void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<V
 // when a column of either cell moved; each cell's verdict from its caps, its side faces
 // and the exact test.
 void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vector<Vec3>& next) {
-  const std::vector<Triangle>& tris = *triangles_;
+  const std::vector<Triangle>& tris = acc_tris_;
   auto growing = [&](const Triangle& t) -> std::array<bool, 3> {
     return {bool(grows_[t[0]]), bool(grows_[t[1]]), bool(grows_[t[2]])};
   };
@@ -279,7 +346,7 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
     const Triangle& t = tris[f];
     const LayerCellFaces c = layer_cell_faces(t, top, next, growing(t));
     cap_bad_[f] = 0;
-    if (!c.n) return;
+    if (!c.n || skip_acceptance_[f]) return;
     FaceGeometry geo[5];
     centre_[f] = layer_cell_centre(c, geo);
     for (int i = 2; i < c.n; ++i) side_geo_[3 * f + c.edge[i]] = geo[i];
@@ -292,7 +359,7 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
     const int* nb = &edge_neighbour_[3 * f];
     bool dirty = tri_moved_[f];
     for (int e = 0; e < 3; ++e) dirty = dirty || (nb[e] >= 0 && tri_moved_[nb[e]]);
-    if (!dirty) return;
+    if (!dirty || skip_acceptance_[f]) return;
     const Triangle& t = tris[f];
     const LayerCellFaces c = layer_cell_faces(t, top, next, growing(t));
     for (int e = 0; e < 3; ++e) {
@@ -313,24 +380,26 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
     bad_cell_[f] = invalid_[f] || cap_bad_[f] || side_face_bad_[slot[0]] || side_face_bad_[slot[1]] ||
                    side_face_bad_[slot[2]];
   });
+  // Fan strips and corner patches: the exact test only.
+  std::copy(invalid_.begin() + nf_, invalid_.end(), bad_cell_.begin() + nf_);
 }
 
 void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
-  const std::vector<Triangle>& tris = *triangles_;
-  const std::vector<int>& layers = *layers_;
-  auto cur_id = [&](int v) -> std::int64_t { return layers[v] == 0 ? v : nv_ + v; };
-  auto new_id = [&](int v) -> std::int64_t { return grows_[v] ? 2 * nv_ + v : cur_id(v); };
-  std::copy(next.begin(), next.end(), soup_.begin() + 2 * static_cast<std::size_t>(nv_));
-  tbb::parallel_for(0, nf_, [&](int f) {
-    const Triangle& t = tris[f];
+  const std::int64_t n_cur = static_cast<std::int64_t>(nv_) + nc_;
+  auto new_id = [&](int c) -> std::int64_t { return grows_[c] ? n_cur + c : cur_id(c); };
+  std::copy(next.begin(), next.end(), soup_.begin() + n_cur);
+  tbb::parallel_for(0, nt_, [&](int f) {
+    const Triangle& t = front_[f];
     new_tris_[f] = {new_id(t[0]), new_id(t[1]), new_id(t[2])};
     new_boxes_[f] = soup_box(new_tris_[f]);
+    // A triangle naming a point twice is no triangle: it is neither tested nor a partner.
+    if (names_a_point_twice(new_tris_[f])) tri_grows_[f] = 0;
     query_[f] = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
     if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
   });
   new_tree_.refit(new_boxes_);
   for (auto& l : partner_hits_) l.clear();
-  tbb::parallel_for(tbb::blocked_range<int>(0, nf_), [&](const tbb::blocked_range<int>& r) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, nt_), [&](const tbb::blocked_range<int>& r) {
     std::vector<int>& partners = partner_hits_.local();
     for (int f = r.begin(); f != r.end(); ++f) {
       if (!query_[f]) continue;
@@ -362,38 +431,48 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
 
 void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::vector<Vec3>& next,
                          const std::vector<char>& grows, FrontVerdict* out) {
-  const std::vector<Triangle>& tris = *triangles_;
   grows_ = grows;
-  parallel_vertices(nv_, [&](int v) {
+  parallel_vertices(nc_, [&](int v) {
     moved_[v] = attempt == 0 || grows_[v] != prev_grows_[v] || !(next[v] == prev_next_[v]);
   });
   prev_next_ = next;
   prev_grows_ = grows_;
-  tbb::parallel_for(0, nf_, [&](int f) {
-    const Triangle& t = tris[f];
+  tbb::parallel_for(0, nt_, [&](int f) {
+    const Triangle& t = front_[f];
     tri_moved_[f] = moved_[t[0]] || moved_[t[1]] || moved_[t[2]];
     tri_grows_[f] = grows_[t[0]] || grows_[t[1]] || grows_[t[2]];
+  });
+  tbb::parallel_for(0, ne_, [&](int e) {
+    const LayerElement& el = elements_[e];
+    const int n = el.kind == ElementKind::kStrip ? 4 : 3;
+    bool m = false;
+    for (int i = 0; i < n; ++i) m = m || moved_[el.column[i]];
+    elem_moved_[e] = m;
   });
   check_cells(top, next);
   if (check_collisions_) check_intersections(next);
   if (plane_) check_symmetry_side(next);
 
-  out->bad.assign(nv_, 0);
-  out->reason.assign(nv_, StopReason::kNone);
-  out->bad_triangle.assign(nf_, 0);
+  out->bad.assign(nc_, 0);
+  out->reason.assign(nc_, StopReason::kNone);
+  out->bad_triangle.assign(nt_, 0);
   out->any_bad = false;
-  for (int f = 0; f < nf_; ++f)
-    if (bad_cell_[f])
-      for (int v : tris[f])
-        if (grows_[v]) {
-          out->bad[v] = 1;
-          out->reason[v] = StopReason::kQuality;
-        }
-  for (int f = 0; f < nf_; ++f) {
+  for (int e = 0; e < ne_; ++e) {
+    if (!bad_cell_[e]) continue;
+    const LayerElement& el = elements_[e];
+    for (int i = 0; i < (el.kind == ElementKind::kStrip ? 4 : 3); ++i) {
+      const int v = el.column[i];
+      if (grows_[v]) {
+        out->bad[v] = 1;
+        out->reason[v] = StopReason::kQuality;
+      }
+    }
+  }
+  for (int f = 0; f < nt_; ++f) {
     const bool crossing = collided_[f] || (!side_bad_.empty() && side_bad_[f]);
-    out->bad_triangle[f] = bad_cell_[f] || crossing;
+    out->bad_triangle[f] = bad_cell_[element_of_triangle_[f]] || crossing;
     if (crossing)
-      for (int v : tris[f])
+      for (int v : front_[f])
         if (grows_[v]) {
           out->bad[v] = 1;
           if (out->reason[v] == StopReason::kNone) out->reason[v] = StopReason::kCollision;
@@ -405,11 +484,10 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
 void FrontChecker::check_symmetry_side(const std::vector<Vec3>& next) {
   // A triangle whose points all lie on the model's side (or in the plane, for the
   // columns on it) lies there too: the half space is convex.
-  const std::vector<Triangle>& tris = *triangles_;
-  side_bad_.assign(nf_, 0);
-  tbb::parallel_for(0, nf_, [&](int f) {
+  side_bad_.assign(nt_, 0);
+  tbb::parallel_for(0, nt_, [&](int f) {
     if (!tri_grows_[f]) return;
-    for (int v : tris[f])
+    for (int v : front_[f])
       if (grows_[v] && !on_plane_[v] && !(plane_->signed_distance(next[v]) > 0.0)) side_bad_[f] = 1;
   });
 }

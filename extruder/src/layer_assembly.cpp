@@ -7,14 +7,20 @@
 namespace blayer {
 
 LayerAssembler::LayerAssembler(const TriSurface& wall, const StepDirections& wall_directions)
-    : triangles_(&wall.triangles) {
+    : LayerAssembler(wall, single_column_layout(wall), wall_directions) {}
+
+LayerAssembler::LayerAssembler(const TriSurface& wall, const ColumnLayout& layout,
+                               const StepDirections& wall_directions)
+    : elements_(layout.elements), in_fan_(layout.in_fan), n_wall_elements_(wall.triangles.size()) {
   const int nv = static_cast<int>(wall.points.size());
   mesh_.points = wall.points;
   point_normal_.assign(nv, Vec3{0.0, 0.0, 0.0});
-  point_column_.resize(nv);
-  for (int v = 0; v < nv; ++v) {
-    point_column_[v] = v;
-    if (wall_directions.ok[v]) point_normal_[v] = wall_directions.n[v];
+  point_column_.assign(nv, -1);
+  for (int c = 0; c < layout.n_columns(); ++c) {
+    const int w = layout.wall_point[c];
+    if (point_column_[w] >= 0) continue;
+    point_column_[w] = c;
+    if (wall_directions.ok[c]) point_normal_[w] = wall_directions.n[c];
   }
 }
 
@@ -27,21 +33,31 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
     if (!grows[v]) continue;
     new_top[v] = static_cast<std::int64_t>(mesh_.points.size());
     mesh_.points.push_back(next[v]);
-    point_normal_[columns->top_id[v]] = d.n[v];
+    // A fan point's wall point shows its first column's direction.
+    if (columns->layers[v] > 0 || point_column_[columns->top_id[v]] == v) point_normal_[columns->top_id[v]] = d.n[v];
     point_normal_.push_back(d.n[v]);
     point_column_.push_back(v);
     min_visibility_ = std::min(min_visibility_, d.visibility[v]);
     ++n_grown;
   }
   columns_per_layer_.push_back(n_grown);
-  for (const Triangle& t : *triangles_) {
-    const std::array<bool, 3> g = {bool(grows[t[0]]), bool(grows[t[1]]), bool(grows[t[2]])};
-    LayerCell cell;
-    if (!layer_cell({columns->top_id[t[0]], columns->top_id[t[1]], columns->top_id[t[2]]},
-                    {new_top[t[0]], new_top[t[1]], new_top[t[2]]}, g, &cell))
-      continue;
-    mesh_.add_cell(cell.type, cell.nodes.data());
-    cell_layer_.push_back(k);
+  for (std::size_t i_e = 0; i_e < elements_.size(); ++i_e) {
+    const LayerElement& e = elements_[i_e];
+    const int n = e.kind == ElementKind::kStrip ? 4 : 3;
+    std::array<std::int64_t, 4> bottom{}, top{};
+    std::array<bool, 4> g{};
+    for (int i = 0; i < n; ++i) {
+      bottom[i] = columns->top_id[e.column[i]];
+      top[i] = new_top[e.column[i]];
+      g[i] = grows[e.column[i]];
+    }
+    LayerCell cells[2];
+    const int n_cells = element_layer_cells(e, bottom, top, g, cells);
+    for (int i = 0; i < n_cells; ++i) {
+      mesh_.add_cell(cells[i].type, cells[i].nodes.data());
+      if (i_e >= n_wall_elements_) ++fan_cells_;
+      cell_layer_.push_back(k);
+    }
   }
   for (int v = 0; v < nv; ++v) {
     if (!grows[v]) continue;
@@ -59,14 +75,17 @@ VolumeMesh LayerAssembler::finish(const ColumnState& columns) {
   DataArray height{"column_height", 1, false, std::vector<double>(np)};
   DataArray reason{"stop_reason", 1, true, std::vector<double>(np)};
   DataArray layers{"layers", 1, true, std::vector<double>(np)};
+  DataArray fan{"fan_column", 1, true, std::vector<double>(np)};
   for (std::int64_t p = 0; p < np; ++p) {
     const int v = point_column_[p];
     for (int i = 0; i < 3; ++i) normal.values[3 * p + i] = point_normal_[p][i];
+    if (v < 0) continue;  // a wall point no triangle uses
     height.values[p] = columns.path[v];
     reason.values[p] = static_cast<int>(columns.reason[v]);
     layers.values[p] = columns.layers[v];
+    fan.values[p] = in_fan_[v];
   }
-  mesh_.point_data = {std::move(normal), std::move(height), std::move(reason), std::move(layers)};
+  mesh_.point_data = {std::move(normal), std::move(height), std::move(reason), std::move(layers), std::move(fan)};
   mesh_.cell_data = {DataArray{"layer", 1, true, std::vector<double>(cell_layer_.begin(), cell_layer_.end())}};
   point_normal_ = {};
   cell_layer_ = {};

@@ -69,6 +69,25 @@ void stop_planned_ends(int k, const ColumnPlan& plan, ColumnState* columns) {
     if (!columns->stopped[v] && plan.planned_layers[v] <= k) columns->stop(v, plan.end_reason[v]);
 }
 
+bool stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnState* columns,
+                     std::vector<char>* grows) {
+  bool any = false;
+  const Csr& g = topo.group_columns;
+  for (int i = 0; i < g.n_rows(); ++i) {
+    const int* first_stopped = std::find_if(g.begin(i), g.end(i), [&](int c) { return columns->stopped[c] != 0; });
+    if (first_stopped == g.end(i)) continue;
+    const StopReason why = columns->reason[*first_stopped];
+    for (const int* c = g.begin(i); c != g.end(i); ++c) {
+      if (columns->stopped[*c]) continue;
+      end_column_after(plan, *c, k, why);
+      columns->stop(*c, why);
+      if (grows) (*grows)[*c] = 0;
+      any = true;
+    }
+  }
+  return any;
+}
+
 void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& topo, const WallPlanes& planes,
                         const StepDirections& d, const ExtrusionParams& p, ColumnPlan* plan, ColumnState* columns) {
   const int nv = columns->size();
@@ -132,6 +151,7 @@ std::vector<char> settle_layer(int k, const std::vector<Triangle>& triangles, co
       if (std::find(turned.begin(), turned.end(), 1) != turned.end()) continue;
     }
     lower_failing_columns(k, verdict, topo, p, start_height, plan, columns, &grows);
+    stop_fan_groups(k, topo, plan, columns, &grows);
   }
   return grows;
 }

@@ -21,12 +21,12 @@ std::vector<Vec3> unit_face_normals(const TriSurface& s) {
 
 // One Jacobi smoothing pass over the ok directions (see compute_step_directions).
 void smoothing_pass(const WallTopology& topo, const std::vector<double>& raw_visibility, double min_visibility,
-                    StepDirections* d) {
+                    const std::vector<char>& fixed, StepDirections* d) {
   const Csr& nbr = topo.vertex_neighbours;
   std::vector<Vec3> next = d->n;
   std::vector<double> next_vis = d->visibility;
   parallel_vertices(topo.n_points(), [&](int v) {
-    if (!d->ok[v]) return;
+    if (!d->ok[v] || (!fixed.empty() && fixed[v])) return;
     Vec3 avg = d->n[v];
     for (const int* u = nbr.begin(v); u != nbr.end(v); ++u) {
       if (!d->ok[*u]) continue;
@@ -110,6 +110,10 @@ bool turn_to_visible(const StepDirections& d, const WallTopology& topo, int v, c
 
 }  // namespace
 
+VertexNormal surface_point_normal(const TriSurface& s, const WallTopology& topo, int v, NormalMethod method) {
+  return front_normal(s, topo, v, method);
+}
+
 StepDirections update_step_directions(const TriSurface& front, const WallTopology& topo,
                                       const std::vector<char>& active, const ExtrusionParams& p,
                                       const StepDirections& previous, int* n_turned) {
@@ -152,9 +156,27 @@ double visibility_of(const StepDirections& d, const WallTopology& topo, int v, c
 }
 
 StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
-                                       const std::vector<char>& active, const ExtrusionParams& p) {
+                                       const std::vector<char>& active, const ExtrusionParams& p,
+                                       const PrescribedDirections* prescribed) {
   const int nv = static_cast<int>(front.points.size());
-  PointNormals pn = compute_point_normals(front, topo.fans, p.normal_method);
+  std::vector<char> fixed;
+  PointNormals pn;
+  if (!prescribed) {
+    pn = compute_point_normals(front, topo.fans, p.normal_method);
+  } else {
+    // The fan points' own fans on the wall are degenerate (their columns coincide):
+    // only the other points get the front's normal.
+    fixed.assign(nv, 0);
+    pn.normal.assign(nv, Vec3{0.0, 0.0, 0.0});
+    pn.status.assign(nv, NormalStatus::kNoVisibleDirection);
+    parallel_vertices(nv, [&](int v) {
+      fixed[v] = norm2(prescribed->n[v]) > 0.0;
+      if (fixed[v] || topo.on_plane[v] || topo.vertex_triangles.count(v) == 0) return;
+      const VertexNormal n = front_normal(front, topo, v, p.normal_method);
+      pn.normal[v] = n.normal;
+      pn.status[v] = n.status;
+    });
+  }
   parallel_vertices(nv, [&](int v) {
     if (!topo.on_plane[v] || !active[v]) return;
     const VertexNormal n = front_normal(front, topo, v, p.normal_method);
@@ -168,12 +190,19 @@ StepDirections compute_step_directions(const TriSurface& front, const WallTopolo
   d.ok.assign(nv, 0);
   parallel_vertices(nv, [&](int v) {
     if (!active[v] || topo.vertex_triangles.count(v) == 0) return;
+    if (!fixed.empty() && fixed[v]) {
+      d.n[v] = prescribed->n[v];
+      d.visibility[v] = prescribed->visibility[v];
+      d.ok[v] = d.visibility[v] >= p.min_visibility;
+      return;
+    }
     if (pn.status[v] == NormalStatus::kNoVisibleDirection || !(norm2(d.n[v]) > 0.0) || !is_finite(d.n[v])) return;
     d.visibility[v] = visibility_of(d, topo, v, d.n[v]);
     d.ok[v] = d.visibility[v] >= p.min_visibility;
   });
   const std::vector<double> raw_visibility = d.visibility;
-  for (int it = 0; it < p.normal_smoothing_iterations; ++it) smoothing_pass(topo, raw_visibility, p.min_visibility, &d);
+  for (int it = 0; it < p.normal_smoothing_iterations; ++it)
+    smoothing_pass(topo, raw_visibility, p.min_visibility, fixed, &d);
   return d;
 }
 

@@ -1,6 +1,7 @@
 #include "blayer/extruder/wall_topology.h"
 
 #include <cmath>
+#include <map>
 
 namespace blayer {
 
@@ -12,6 +13,9 @@ WallTopology build_wall_topology(const TriSurface& wall, const std::optional<Sym
   const int nv = static_cast<int>(wall.points.size());
   t.used.assign(nv, 0);
   for (int v = 0; v < nv; ++v) t.used[v] = t.vertex_triangles.count(v) > 0;
+  t.wall_point.resize(nv);
+  for (int v = 0; v < nv; ++v) t.wall_point[v] = v;
+  t.fan_group.assign(nv, -1);
   t.on_plane.assign(nv, 0);
   t.plane = plane;
   if (plane) {
@@ -20,6 +24,27 @@ WallTopology build_wall_topology(const TriSurface& wall, const std::optional<Sym
       const VertexFan& fan = t.fans.fans[v];
       t.on_plane[v] = !fan.triangles.empty() && !fan.closed && std::fabs(plane->signed_distance(wall.points[v])) <= tol;
     }
+  }
+  return t;
+}
+
+WallTopology build_column_topology(const ColumnLayout& layout, const std::optional<SymmetryPlane>& plane) {
+  WallTopology t = build_wall_topology(layout.front, plane);
+  t.wall_point = layout.wall_point;
+  // Groups in column order: a fan point's columns are contiguous from its first sector
+  // column on, except the sub-normal and centre columns added later.
+  std::map<int, int> group_of_point;
+  std::vector<std::vector<int>> groups;
+  for (int c = 0; c < layout.n_columns(); ++c) {
+    if (!layout.in_fan[c]) continue;
+    auto it = group_of_point.emplace(layout.wall_point[c], static_cast<int>(groups.size())).first;
+    if (it->second == static_cast<int>(groups.size())) groups.emplace_back();
+    groups[it->second].push_back(c);
+    t.fan_group[c] = it->second;
+  }
+  for (const std::vector<int>& g : groups) {
+    t.group_columns.items.insert(t.group_columns.items.end(), g.begin(), g.end());
+    t.group_columns.start.push_back(static_cast<int>(t.group_columns.items.size()));
   }
   return t;
 }

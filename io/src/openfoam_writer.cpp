@@ -105,28 +105,21 @@ void write_openfoam_polymesh(const SolverMesh& mesh, const std::string& dir, con
 
 void write_openfoam_system(const std::string& dir, const std::string& target) {
   const fs::path d(dir);
-  {
-    TextOutput out((d / "controlDict").string(), target + "/controlDict");
-    header(out, nullptr, "dictionary", "system", "controlDict");
-    out << "application     simpleFoam;\nstartFrom       startTime;\nstartTime       0;\n"
-           "stopAt          endTime;\nendTime         1;\ndeltaT          1;\n"
-           "writeControl    timeStep;\nwriteInterval   1;\nwriteFormat     ascii;\n";
+  auto dictionary = [&](const char* name, const char* body) {
+    TextOutput out((d / name).string(), target + "/" + name);
+    header(out, nullptr, "dictionary", "system", name);
+    out << body;
     out.close();
-  }
-  {
-    TextOutput out((d / "fvSchemes").string(), target + "/fvSchemes");
-    header(out, nullptr, "dictionary", "system", "fvSchemes");
-    out << "ddtSchemes           { default steadyState; }\ngradSchemes          { default Gauss linear; }\n"
-           "divSchemes           { default none; }\nlaplacianSchemes     { default Gauss linear corrected; }\n"
-           "interpolationSchemes { default linear; }\nsnGradSchemes        { default corrected; }\n";
-    out.close();
-  }
-  {
-    TextOutput out((d / "fvSolution").string(), target + "/fvSolution");
-    header(out, nullptr, "dictionary", "system", "fvSolution");
-    out << "solvers {}\n";
-    out.close();
-  }
+  };
+  dictionary("controlDict",
+             "application     simpleFoam;\nstartFrom       startTime;\nstartTime       0;\n"
+             "stopAt          endTime;\nendTime         1;\ndeltaT          1;\n"
+             "writeControl    timeStep;\nwriteInterval   1;\nwriteFormat     ascii;\n");
+  dictionary("fvSchemes",
+             "ddtSchemes           { default steadyState; }\ngradSchemes          { default Gauss linear; }\n"
+             "divSchemes           { default none; }\nlaplacianSchemes     { default Gauss linear corrected; }\n"
+             "interpolationSchemes { default linear; }\nsnGradSchemes        { default corrected; }\n");
+  dictionary("fvSolution", "solvers {}\n");
 }
 
 bool is_openfoam_polymesh_path(const std::string& output) {

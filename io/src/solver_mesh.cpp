@@ -38,7 +38,8 @@ VolumeMesh used_points_only(const VolumeMesh& mesh, std::vector<std::int64_t>* p
   return out;
 }
 
-// Patch of every boundary face: the listed patch whose triangle it is, or `rest`.
+// Patch of every boundary face: the listed patch whose triangle it is (for a quad: whose
+// triangles both its halves are), or `rest`.
 std::vector<int> classify_boundary(const MeshFaces& faces, const std::vector<PatchTriangles>& listed,
                                    const std::vector<std::int64_t>& point_of_input, int rest) {
   std::vector<std::pair<TriangleKey, int>> known;  // sorted key -> patch, first listing first
@@ -50,13 +51,28 @@ std::vector<int> classify_boundary(const MeshFaces& faces, const std::vector<Pat
     }
   std::stable_sort(known.begin(), known.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<int> patch(faces.n_boundary(), rest);
-  for (std::size_t f = faces.n_internal; f < faces.size(); ++f) {
-    if (faces.n_nodes[f] != 3) continue;
-    const TriangleKey k = sorted_key({faces.nodes[f][0], faces.nodes[f][1], faces.nodes[f][2]});
+  auto patch_of = [&](const TriangleKey& k) {
     auto it = std::lower_bound(known.begin(), known.end(), k,
                                [](const auto& entry, const TriangleKey& key) { return entry.first < key; });
-    if (it != known.end() && it->first == k) patch[f - faces.n_internal] = it->second;
+    return it != known.end() && it->first == k ? it->second : -1;
+  };
+  std::vector<int> patch(faces.n_boundary(), rest);
+  for (std::size_t f = faces.n_internal; f < faces.size(); ++f) {
+    const auto& n = faces.nodes[f];
+    if (faces.n_nodes[f] == 3) {
+      const int p = patch_of(sorted_key({n[0], n[1], n[2]}));
+      if (p >= 0) patch[f - faces.n_internal] = p;
+      continue;
+    }
+    // A quad (the top of a fan strip) is listed as its two halves, along either diagonal.
+    for (int d = 0; d < 2; ++d) {
+      const int a = patch_of(sorted_key({n[d], n[d + 1], n[d + 2]}));
+      const int b = patch_of(sorted_key({n[d + 2], n[(d + 3) % 4], n[d]}));
+      if (a >= 0 && a == b) {
+        patch[f - faces.n_internal] = a;
+        break;
+      }
+    }
   }
   return patch;
 }

@@ -39,6 +39,23 @@ struct NoScreen {
   bool arc_ok(const Vec3&, const Vec3&) const { return true; }
 };
 
+// The four extrema of the point-arc parabola of point site w and arc site g, those the
+// screen keeps: where it crosses the plane of w and g, at the angles tg/2 +- pi/4 (and
+// their antipodes) from w, tg = angle(w, g). For unit w and g, p = w + g and q = g - w
+// are orthogonal, at angles tg/2 and tg/2 + pi/2, so those directions are p/|p| +-
+// q/|q|, scaled here by |p| |q| (candidates are normalised later): no angle round trip.
+// Each of p, q is as well conditioned as the in-plane axis g - (w.g) w, and both vanish
+// only when g = +-w.
+template <class Screen, class Emit>
+void point_arc_extrema(const Vec3& w, const Vec3& g, const Screen& screen, Emit&& emit) {
+  const Vec3 p = w + g, q = g - w;
+  const double lp = norm(p), lq = norm(q);
+  if (lp == 0.0 || lq == 0.0) return;
+  const Vec3 x = lq * p + lp * q, y = lq * p - lp * q;
+  for (const Vec3& c : {x, -x, y, -y})
+    if (screen.point_ok(c, w) && screen.arc_ok(c, g)) emit(c);
+}
+
 // 1- and 2-site candidates: antipodes of points, poles of arcs, point-point and arc-arc
 // bisector peaks, and the four extrema of each point-arc parabola.
 template <class Screen, class Emit>
@@ -53,23 +70,8 @@ void single_and_pair_candidates(const FanSites& s, const SiteSubset& sub, const 
     for (int b = a + 1; b < na; ++b)
       if (!screen.arc_pair(s.arcs[sub.arcs[a]].g, s.arcs[sub.arcs[b]].g))
         emit(s.arcs[sub.arcs[a]].g + s.arcs[sub.arcs[b]].g);
-  // Point-arc parabola extrema: where it crosses the plane of w and f, at the angles
-  // tf/2 +- pi/4 (and their antipodes) from w, tf = angle(w, f). For unit w and f,
-  // p = w + f and q = f - w are orthogonal, at angles tf/2 and tf/2 + pi/2, so those
-  // directions are p/|p| +- q/|q|, scaled here by |p| |q| (candidates are normalised
-  // later): no angle round trip. Each of p, q is as well conditioned as the in-plane
-  // axis f - (w.f) w, and both vanish only when f = +-w.
   for (int a = 0; a < np; ++a)
-    for (int b = 0; b < na; ++b) {
-      const Vec3& w = s.points[sub.points[a]].w;
-      const Vec3& g = s.arcs[sub.arcs[b]].g;
-      const Vec3 p = w + g, q = g - w;
-      const double lp = norm(p), lq = norm(q);
-      if (lp == 0.0 || lq == 0.0) continue;
-      const Vec3 x = lq * p + lp * q, y = lq * p - lp * q;
-      for (const Vec3& c : {x, -x, y, -y})
-        if (screen.point_ok(c, w) && screen.arc_ok(c, g)) emit(c);
-    }
+    for (int b = 0; b < na; ++b) point_arc_extrema(s.points[sub.points[a]].w, s.arcs[sub.arcs[b]].g, screen, emit);
 }
 
 // The candidates of one site (its antipode or pole) or of one pair (bisector peak or
@@ -87,14 +89,7 @@ void pair_candidates(const FanSites& s, const SiteSubset& sub, const Screen& scr
     if (!screen.arc_pair(s.arcs[sub.arcs[0]].g, s.arcs[sub.arcs[1]].g))
       emit(s.arcs[sub.arcs[0]].g + s.arcs[sub.arcs[1]].g);
   } else {
-    const Vec3& w = s.points[sub.points[0]].w;
-    const Vec3& g = s.arcs[sub.arcs[0]].g;
-    const Vec3 p = w + g, q = g - w;
-    const double lp = norm(p), lq = norm(q);
-    if (lp == 0.0 || lq == 0.0) return;
-    const Vec3 x = lq * p + lp * q, y = lq * p - lp * q;
-    for (const Vec3& c : {x, -x, y, -y})
-      if (screen.point_ok(c, w) && screen.arc_ok(c, g)) emit(c);
+    point_arc_extrema(s.points[sub.points[0]].w, s.arcs[sub.arcs[0]].g, screen, emit);
   }
 }
 
@@ -224,6 +219,22 @@ inline void plateau_circles(const FanSites& s, const SiteSubset& sub, double tie
       }
 }
 
+// The terms a_i + b_i cos t + c_i sin t of n(t).f_i on the plateau circle
+// n(t) = c0 h + s (cos t e1 + sin t e2), for the given faces.
+inline void circle_terms(const FanGeometry& g, const PlateauCircle& circ, const int* faces, int n_faces,
+                         const Vec3& e1, const Vec3& e2, double s, std::vector<double>* ca, std::vector<double>* cb,
+                         std::vector<double>* cc) {
+  ca->resize(n_faces);
+  cb->resize(n_faces);
+  cc->resize(n_faces);
+  for (int i = 0; i < n_faces; ++i) {
+    const Vec3& f = g.face_normals[faces[i]];
+    (*ca)[i] = circ.c0 * dot(circ.h, f);
+    (*cb)[i] = s * dot(e1, f);
+    (*cc)[i] = s * dot(e2, f);
+  }
+}
+
 // The points of a plateau circle where V = min over `faces` of n.f can peak: a single
 // term's peak or the equality of two terms. ca, cb, cc are scratch of n_faces entries.
 template <class Emit>
@@ -232,17 +243,9 @@ void plateau_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* f
   Vec3 e1, e2;
   orthonormal_complement(circ.h, &e1, &e2);
   const double s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
-  ca->resize(n_faces);
-  cb->resize(n_faces);
-  cc->resize(n_faces);
   // V along the circle is min_i (a_i + b_i cos t + c_i sin t); it peaks at a single
   // term's peak or where two terms are equal.
-  for (int i = 0; i < n_faces; ++i) {
-    const Vec3& f = g.face_normals[faces[i]];
-    (*ca)[i] = circ.c0 * dot(circ.h, f);
-    (*cb)[i] = s * dot(e1, f);
-    (*cc)[i] = s * dot(e2, f);
-  }
+  circle_terms(g, circ, faces, n_faces, e1, e2, s, ca, cb, cc);
   auto at = [&](double t) { emit(circ.c0 * circ.h + s * (std::cos(t) * e1 + std::sin(t) * e2)); };
   for (int i = 0; i < n_faces; ++i) {
     at(std::atan2((*cc)[i], (*cb)[i]));
@@ -287,15 +290,7 @@ void plateau_envelope_peaks(const FanGeometry& g, const PlateauCircle& circ, con
     t0 = tc - half;
     t1 = tc + half;
   }
-  ca->resize(n_faces);
-  cb->resize(n_faces);
-  cc->resize(n_faces);
-  for (int i = 0; i < n_faces; ++i) {
-    const Vec3& f = g.face_normals[faces[i]];
-    (*ca)[i] = circ.c0 * dot(circ.h, f);
-    (*cb)[i] = s * dot(e1, f);
-    (*cc)[i] = s * dot(e2, f);
-  }
+  circle_terms(g, circ, faces, n_faces, e1, e2, s, ca, cb, cc);
   const double* a = ca->data();
   const double* b = cb->data();
   const double* c = cc->data();

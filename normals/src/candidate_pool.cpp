@@ -14,15 +14,21 @@ constexpr double kCheapTestMargin = 1e-15;
 
 }  // namespace
 
-bool fluid_side_at_vertex(const FanGeometry& g, int j, const Vec3& n) {
+VertexTangents vertex_tangents(const FanGeometry& g, int j, const Vec3& n) {
   const int k = g.n_faces();
   const Vec3& w = g.dirs[j];
   const Vec3& prev = g.dirs[(j + k - 1) % k];
   const Vec3& next = g.dirs[(j + 1) % k];
-  const Vec3 t_in = prev - dot(prev, w) * w;
-  const Vec3 t_out = next - dot(next, w) * w;
-  const Vec3 t_n = n - dot(n, w) * w;
-  const Vec3 left = cross(w, t_out);
+  VertexTangents t;
+  t.t_in = prev - dot(prev, w) * w;
+  t.t_out = next - dot(next, w) * w;
+  t.t_n = n - dot(n, w) * w;
+  t.left = cross(w, t.t_out);
+  return t;
+}
+
+bool fluid_side_at_vertex(const FanGeometry& g, int j, const Vec3& n) {
+  const auto [t_in, t_out, t_n, left] = vertex_tangents(g, j, n);
   auto beta = [&](const Vec3& x) {
     const double b = std::atan2(dot(left, x), dot(t_out, x));
     return b < 0.0 ? b + 2.0 * M_PI : b;

@@ -34,6 +34,14 @@ constexpr double kConstraintSlack = 1e-12;
 // in the fluid wedge, left of the turn from the outgoing arc to the incoming one.
 bool fluid_side_at_vertex(const FanGeometry& g, int j, const Vec3& n);
 
+// The tangents at link vertex u_j (= g.dirs[j]) that the fluid-side tests compare: the
+// incoming arc's (towards u_j-1), the outgoing arc's (towards u_j+1), n's, and `left`,
+// the outgoing tangent turned a quarter counter-clockwise about u_j.
+struct VertexTangents {
+  Vec3 t_in, t_out, t_n, left;
+};
+VertexTangents vertex_tangents(const FanGeometry& g, int j, const Vec3& n);
+
 struct Maximizer {
   Vec3 n;
   double d;

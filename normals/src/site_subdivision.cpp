@@ -57,14 +57,7 @@ double sin_bound(double angle) { return angle >= 0.5 * M_PI ? 2.0 : std::sin(ang
 // exactly on the wedge boundary does not matter there: such a centre is within
 // rounding of an arc, and its cell is never dropped for its side).
 bool fluid_at_vertex(const FanGeometry& g, int j, const Vec3& n) {
-  const int k = g.n_faces();
-  const Vec3& w = g.dirs[j];
-  const Vec3& prev = g.dirs[(j + k - 1) % k];
-  const Vec3& next = g.dirs[(j + 1) % k];
-  const Vec3 t_in = prev - dot(prev, w) * w;
-  const Vec3 t_out = next - dot(next, w) * w;
-  const Vec3 t_n = n - dot(n, w) * w;
-  const Vec3 left = cross(w, t_out);
+  const auto [t_in, t_out, t_n, left] = vertex_tangents(g, j, n);
   // Counter-clockwise angle from t_out, compared by half-turn, then by orientation.
   const double sn = dot(left, t_n), cn = dot(t_out, t_n);
   const double si = dot(left, t_in), ci = dot(t_out, t_in);

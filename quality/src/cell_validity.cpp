@@ -1,5 +1,7 @@
 #include "blayer/quality/cell_validity.h"
 
+#include <algorithm>
+
 #include "blayer/quality/orient3d.h"
 
 namespace blayer {
@@ -22,10 +24,46 @@ constexpr std::array<int, 4> kWedgeTets[] = {
     {1, 2, 4, 3}, {1, 2, 5, 3},                // base edge 1-2
     {2, 0, 5, 4}, {2, 0, 3, 4}};               // base edge 2-0
 
-// Base node i: (i, next, prev, i+4); top node 4+i: (4+i, 4+prev, 4+next, i).
-constexpr std::array<int, 4> kHexTets[] = {
-    {0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
-    {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}};
+// Every tet spanned by four hex nodes that do not lie on one face or one diagonal
+// plane of the reference cube, oriented positive in it: 58, the corner tets first
+// (base node i: (i, next, prev, i+4); top node 4+i: (4+i, 4+prev, 4+next, i)), then the
+// others in lexicographic order.
+constexpr int kHexTetCount = 58;
+std::array<std::array<int, 4>, kHexTetCount> make_hex_tets() {
+  constexpr int cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  auto det = [&](const std::array<int, 4>& t) {
+    int e[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 3; ++k) e[r][k] = cube[t[r + 1]][k] - cube[t[0]][k];
+    return e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+           e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+  };
+  std::array<std::array<int, 4>, kHexTetCount> out{};
+  const std::array<std::array<int, 4>, 8> corners = {{{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3, 1, 6}, {3, 0, 2, 7},
+                                                       {4, 7, 5, 0}, {5, 4, 6, 1}, {6, 5, 7, 2}, {7, 6, 4, 3}}};
+  int n = 0;
+  for (const auto& c : corners) out[n++] = c;
+  auto is_corner = [&](std::array<int, 4> t) {
+    std::sort(t.begin(), t.end());
+    for (std::array<int, 4> c : corners) {
+      std::sort(c.begin(), c.end());
+      if (c == t) return true;
+    }
+    return false;
+  };
+  for (int a = 0; a < 8; ++a)
+    for (int b = a + 1; b < 8; ++b)
+      for (int c = b + 1; c < 8; ++c)
+        for (int d = c + 1; d < 8; ++d) {
+          std::array<int, 4> t{a, b, c, d};
+          const int v = det(t);
+          if (v == 0 || is_corner(t)) continue;
+          if (v < 0) std::swap(t[2], t[3]);
+          out[n++] = t;
+        }
+  return out;
+}
+const std::array<std::array<int, 4>, kHexTetCount> kHexTets = make_hex_tets();
 
 template <std::size_t N>
 const std::array<int, 4>* with_count(const std::array<int, 4> (&tets)[N], std::size_t* count) {
@@ -40,7 +78,9 @@ const std::array<int, 4>* validity_tets(CellType type, std::size_t* count) {
     case CellType::kTet: return with_count(kTetTets, count);
     case CellType::kPyramid: return with_count(kPyramidTets, count);
     case CellType::kWedge: return with_count(kWedgeTets, count);
-    case CellType::kHex: return with_count(kHexTets, count);
+    case CellType::kHex:
+      *count = kHexTets.size();
+      return kHexTets.data();
   }
   *count = 0;
   return nullptr;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -40,32 +41,98 @@ std::vector<std::vector<std::int64_t>> column_neighbours(const VolumeMesh& mesh)
   return nb;
 }
 
-// The column of wall point w: the points after w, in order.
-std::vector<std::int64_t> follow_column(std::int64_t w, const std::vector<std::vector<std::int64_t>>& nb,
-                                        std::size_t n_wall, bool* branching) {
-  std::vector<std::int64_t> path;
-  std::int64_t prev = -1, cur = w;
+// A column edge continues a column when it turns by less than 60 degrees from the
+// column's previous segment: edges that run along a ridge or across a fan (fan wedges,
+// strip closures) turn by about 90 degrees and are not followed.
+constexpr double kMinContinuationCosine = 0.5;
+
+// The column that leaves wall point w through its first point q: q and the points
+// after it, in order. Where a point has several onward column edges, the one best
+// aligned with the column's last segment is followed if it turns by less than 60
+// degrees; *branching is set when another one also does.
+std::vector<std::int64_t> follow_column(std::int64_t w, std::int64_t q, const VolumeMesh& mesh,
+                                        const std::vector<std::vector<std::int64_t>>& nb, std::size_t n_wall,
+                                        bool* branching) {
+  std::vector<std::int64_t> path{q};
+  std::int64_t prev = w, cur = q;
   *branching = false;
   // A column cannot be longer than the mesh has points; the bound also stops a cycle.
   while (path.size() < nb.size()) {
+    const Vec3 last = normalized(mesh.points[cur] - mesh.points[prev]);
     std::int64_t next = -1;
-    int onward = 0;
-    for (std::int64_t q : nb[cur]) {
-      if (q == prev || static_cast<std::size_t>(q) < n_wall) continue;
-      if (std::find(path.begin(), path.end(), q) != path.end()) continue;
-      ++onward;
-      next = q;
+    double best = kMinContinuationCosine;
+    int aligned = 0;
+    for (std::int64_t c : nb[cur]) {
+      if (c == prev || static_cast<std::size_t>(c) < n_wall) continue;
+      if (std::find(path.begin(), path.end(), c) != path.end()) continue;
+      const double cosine = dot(normalized(mesh.points[c] - mesh.points[cur]), last);
+      if (!(cosine >= kMinContinuationCosine)) continue;
+      ++aligned;
+      if (cosine >= best) {
+        best = cosine;
+        next = c;
+      }
     }
-    if (onward == 0) break;
-    if (onward > 1) {
-      *branching = true;
-      break;
-    }
+    if (aligned > 1) *branching = true;
+    if (next < 0) break;
     path.push_back(next);
     prev = cur;
     cur = next;
   }
   return path;
+}
+
+// The first points of the columns leaving each wall point (column edges to a point
+// off the wall), ascending.
+std::vector<std::vector<std::int64_t>> column_starts(const std::vector<std::vector<std::int64_t>>& nb,
+                                                     std::size_t n_wall) {
+  std::vector<std::vector<std::int64_t>> starts(n_wall);
+  for (std::size_t w = 0; w < n_wall; ++w) {
+    for (std::int64_t q : nb[w])
+      if (static_cast<std::size_t>(q) >= n_wall) starts[w].push_back(q);
+    std::sort(starts[w].begin(), starts[w].end());
+  }
+  return starts;
+}
+
+// The wall triangles each first point stands on: those whose wall-layer wedge or
+// closure pyramid (its base on the triangle's three points) has the column edge from
+// the wall to it. With several columns at a wall point (a fan), each column's height
+// is measured above its own faces' planes.
+std::unordered_map<std::int64_t, std::vector<int>> first_point_triangles(const VolumeMesh& mesh,
+                                                                          const TriSurface& wall) {
+  const std::int64_t n_wall = static_cast<std::int64_t>(wall.points.size());
+  std::map<std::array<std::int64_t, 3>, int> triangle_of;
+  for (std::size_t t = 0; t < wall.triangles.size(); ++t) {
+    std::array<std::int64_t, 3> k{wall.triangles[t][0], wall.triangles[t][1], wall.triangles[t][2]};
+    std::sort(k.begin(), k.end());
+    triangle_of[k] = static_cast<int>(t);
+  }
+  std::unordered_map<std::int64_t, std::vector<int>> out;
+  static constexpr int kWedgeEdges[3][2] = {{0, 3}, {1, 4}, {2, 5}};
+  static constexpr int kPyramidEdges[2][2] = {{0, 1}, {3, 2}};
+  for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
+    const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
+    const bool wedge = mesh.cell_types[c] == CellType::kWedge;
+    if (!wedge && mesh.cell_types[c] != CellType::kPyramid) continue;
+    std::array<std::int64_t, 3> base = wedge ? std::array<std::int64_t, 3>{n[0], n[1], n[2]}
+                                             : std::array<std::int64_t, 3>{n[0], n[3], n[4]};
+    if (base[0] >= n_wall || base[1] >= n_wall || base[2] >= n_wall) continue;
+    std::sort(base.begin(), base.end());
+    const auto it = triangle_of.find(base);
+    if (it == triangle_of.end()) continue;
+    auto add = [&](const int(*edges)[2], int count) {
+      for (int e = 0; e < count; ++e) {
+        const std::int64_t a = n[edges[e][0]], b = n[edges[e][1]];
+        if (a < n_wall && b >= n_wall) out[b].push_back(it->second);
+      }
+    };
+    if (wedge)
+      add(kWedgeEdges, 3);
+    else
+      add(kPyramidEdges, 2);
+  }
+  return out;
 }
 
 double percentile(const std::vector<double>& sorted, double p) {
@@ -127,6 +194,11 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
   };
 
   const auto nb = column_neighbours(mesh);
+  const auto starts = column_starts(nb, n_wall);
+  std::unordered_map<std::int64_t, std::vector<int>> own_triangles;
+  bool fans = false;
+  for (const auto& s : starts) fans = fans || s.size() > 1;
+  if (fans) own_triangles = first_point_triangles(mesh, wall);
   const detail::NearestTriangleTree tree(wall);
   LayerFidelity f;
   f.columns.resize(n_wall);
@@ -134,39 +206,63 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
   int within1_planes = 0, within1_distance = 0, within10_planes = 0, within10_distance = 0;
   int reach_planes = 0, reach_distance = 0;
   const double h1 = targets.first_height, total = targets.total_thickness;
+  std::vector<int> point_layers(n_wall, -1);  // fewest layers of the point's columns
   for (std::size_t w = 0; w < n_wall; ++w) {
-    ColumnFidelity& c = f.columns[w];
     if (incident[w].empty()) {
-      c.layers = -1;
+      f.columns[w].layers = -1;
       continue;
     }
-    ++f.n_columns;
-    bool branching = false;
-    const std::vector<std::int64_t> path = follow_column(static_cast<std::int64_t>(w), nb, n_wall, &branching);
-    f.n_branching += branching ? 1 : 0;
-    c.layers = static_cast<int>(path.size());
-    c.top_point = path.empty() ? static_cast<std::int64_t>(w) : path.back();
-    if (!path.empty()) {
-      const Vec3& first = mesh.points[path.front()];
-      const Vec3& top = mesh.points[path.back()];
-      c.first_height_planes = height_planes(w, first);
-      c.first_distance = tree.nearest(first).distance;
-      c.top_height_planes = height_planes(w, top);
-      c.top_distance = tree.nearest(top).distance;
-      ++f.n_grown;
-      const double rp = c.first_height_planes / h1, rd = c.first_distance / h1;
-      first_planes.push_back(rp);
-      first_distance.push_back(rd);
-      within1_planes += std::fabs(rp - 1.0) <= 0.01;
-      within1_distance += std::fabs(rd - 1.0) <= 0.01;
-      within10_planes += std::fabs(rp - 1.0) <= 0.1;
-      within10_distance += std::fabs(rd - 1.0) <= 0.1;
+    if (starts[w].size() > 1) ++f.n_fan_points;
+    // A point without a column edge off the wall has one column, without layers.
+    const std::vector<std::int64_t> firsts = starts[w].empty() ? std::vector<std::int64_t>{-1} : starts[w];
+    for (std::size_t i = 0; i < firsts.size(); ++i) {
+      ColumnFidelity c;
+      ++f.n_columns;
+      if (firsts[i] >= 0) {
+        bool branching = false;
+        const std::vector<std::int64_t> path =
+            follow_column(static_cast<std::int64_t>(w), firsts[i], mesh, nb, n_wall, &branching);
+        f.n_branching += branching ? 1 : 0;
+        // The planes: all the point's triangles, or with a fan the column's own.
+        std::vector<int> planes = incident[w];
+        if (firsts.size() > 1) {
+          const auto it = own_triangles.find(firsts[i]);
+          if (it != own_triangles.end()) planes = it->second;
+        }
+        auto height_planes = [&](const Vec3& p) {
+          double h = std::numeric_limits<double>::infinity();
+          for (int t : planes) h = std::min(h, dot(p - wall.points[wall.triangles[t][0]], unit_normal[t]));
+          return h;
+        };
+        c.layers = static_cast<int>(path.size());
+        c.top_point = path.back();
+        const Vec3& first = mesh.points[path.front()];
+        const Vec3& top = mesh.points[path.back()];
+        c.first_height_planes = height_planes(first);
+        c.first_distance = tree.nearest(first).distance;
+        c.top_height_planes = height_planes(top);
+        c.top_distance = tree.nearest(top).distance;
+        ++f.n_grown;
+        const double rp = c.first_height_planes / h1, rd = c.first_distance / h1;
+        first_planes.push_back(rp);
+        first_distance.push_back(rd);
+        within1_planes += std::fabs(rp - 1.0) <= 0.01;
+        within1_distance += std::fabs(rd - 1.0) <= 0.01;
+        within10_planes += std::fabs(rp - 1.0) <= 0.1;
+        within10_distance += std::fabs(rd - 1.0) <= 0.1;
+      } else {
+        c.top_point = static_cast<std::int64_t>(w);
+      }
+      if (c.layers >= targets.layers) ++f.n_complete;
+      top_planes.push_back(c.top_height_planes / total);
+      top_distance.push_back(c.top_distance / total);
+      reach_planes += top_planes.back() >= 0.9;
+      reach_distance += top_distance.back() >= 0.9;
+      if (i == 0 || c.layers < point_layers[w]) {
+        point_layers[w] = c.layers;
+        f.columns[w] = c;
+      }
     }
-    if (c.layers >= targets.layers) ++f.n_complete;
-    top_planes.push_back(c.top_height_planes / total);
-    top_distance.push_back(c.top_distance / total);
-    reach_planes += top_planes.back() >= 0.9;
-    reach_distance += top_distance.back() >= 0.9;
   }
   f.first_over_h1_planes = describe_distribution(first_planes);
   f.first_over_h1_distance = describe_distribution(first_distance);
@@ -184,7 +280,7 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
     const double a = 0.5 * norm(triangle_area_vector(wall, t));
     area += a;
     bool complete = true;
-    for (int v : t) complete &= f.columns[v].layers >= targets.layers;
+    for (int v : t) complete &= point_layers[v] >= targets.layers;
     if (complete) covered += a;
   }
   f.area_coverage = area > 0.0 ? covered / area : 0.0;
@@ -197,6 +293,7 @@ nlohmann::json layer_fidelity_to_json(const LayerFidelity& f) {
   j["grown"] = f.n_grown;
   j["complete"] = f.n_complete;
   j["branching"] = f.n_branching;
+  j["fan_points"] = f.n_fan_points;
   j["first_over_h1"] = {{"planes", distribution_json(f.first_over_h1_planes)},
                         {"distance", distribution_json(f.first_over_h1_distance)}};
   j["top_over_T"] = {{"planes", distribution_json(f.top_over_T_planes)},

@@ -23,7 +23,7 @@ using testing::TempDir;
 using testing::ToolRun;
 
 struct Extruded {
-  std::map<std::string, long> cells;    // "wedge", "pyramid", "tetra" as blayer's check counted them
+  std::map<std::string, long> cells;    // "wedge", "pyramid", "tetra", "hexahedron" as blayer's check counted them
   std::map<std::string, long> patches;  // name -> faces, as blayer printed them
   long n_boundary_faces = 0;
 };
@@ -34,8 +34,10 @@ Extruded extrude(const std::string& args, const TempDir& dir) {
   EXPECT_EQ(r.status, 0) << args << "\n" << r.out << r.err;
   Extruded e;
   std::smatch m;
-  if (std::regex_search(r.out, m, std::regex("check: [0-9]+ cells \\(([0-9]+) wedges, ([0-9]+) pyramids, ([0-9]+) tets\\)"))) {
-    e.cells = {{"wedge", std::stol(m[1])}, {"pyramid", std::stol(m[2])}, {"tetra", std::stol(m[3])}};
+  if (std::regex_search(r.out, m,
+                        std::regex("check: [0-9]+ cells \\(([0-9]+) wedges, ([0-9]+) pyramids, ([0-9]+) tets(, ([0-9]+) hexes)?\\)"))) {
+    e.cells = {{"wedge", std::stol(m[1])}, {"pyramid", std::stol(m[2])}, {"tetra", std::stol(m[3])},
+               {"hexahedron", m[5].matched ? std::stol(m[5]) : 0}};
   }
   const std::regex patch_re("(\\w+) \\(([0-9]+) faces\\)");
   const std::string line = r.out.substr(0, r.out.find("\ncheck:"));
@@ -60,6 +62,7 @@ void expect_check_mesh(const std::string& case_dir, const Extruded& e) {
   EXPECT_EQ(testing::check_mesh_figure(run.output, "prisms:"), e.cells.at("wedge"));
   EXPECT_EQ(testing::check_mesh_figure(run.output, "pyramids:"), e.cells.at("pyramid"));
   EXPECT_EQ(testing::check_mesh_figure(run.output, "tetrahedra:"), e.cells.at("tetra"));
+  EXPECT_EQ(testing::check_mesh_figure(run.output, "hexahedra:"), e.cells.at("hexahedron"));
   EXPECT_EQ(testing::check_mesh_patches(run.output), e.patches);
 }
 
@@ -71,7 +74,8 @@ void expect_meshio_counts(const std::string& file, const Extruded& e) {
   EXPECT_EQ(n["triangle"] + n["quad"], e.n_boundary_faces) << file;
 }
 
-// The cases: a layers-only cube (8 layers of wedges) and the sphere hybrid (wedges and tets).
+// The cases: a layers-only cube with fans (8 layers of wedges, hexes on the edges, tets at
+// the corners) and the sphere hybrid (wedges and tets).
 struct ExportCase {
   const char* name;
   const char* extra_args;
@@ -79,7 +83,7 @@ struct ExportCase {
   std::vector<std::string> patch_names;
 };
 
-const ExportCase kCube{"003_cube", "", "003_cube/surface.stl", {"bl_outer", "wall"}};
+const ExportCase kCube{"014_cube_fans", "", "003_cube/surface.stl", {"bl_outer", "wall"}};
 const ExportCase kSphereHybrid{"011_sphere_hybrid", "", "002_sphere/surface.stl", {"farfield", "wall"}};
 
 void expect_patches(const Extruded& e, const ExportCase& c) {

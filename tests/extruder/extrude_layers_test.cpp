@@ -170,6 +170,7 @@ TEST(ExtrudeLayers, ThinSlotFrontsStopBeforeMeeting) {
   const TriSurface wall =
       test::voxel_surface({5, 3, 3}, [](int i, int, int k) { return !(i == 2 && k >= 1); }, cell);
   ExtrusionParams p;
+  p.fan_angle_deg = 0.0;  // single columns, indexed by wall point below
   p.growth.layers = 5;
   p.growth.total_thickness = 0.2;
   p.growth.growth_ratio = 1.2;

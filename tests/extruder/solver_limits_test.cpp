@@ -19,6 +19,7 @@ namespace {
 // Only the given limits.
 ExtrusionParams limits(const AcceptanceLimits& l) {
   ExtrusionParams p;
+  p.fan_angle_deg = 0.0;  // the limits apply to single columns (front_checker.h)
   p.solver_limits = l;
   return p;
 }

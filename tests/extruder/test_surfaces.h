@@ -23,8 +23,11 @@ using test_surfaces::icosphere;
 using test_surfaces::square_plate;
 
 // Parameters with the growth law N layers from first height h1 growing by ratio r.
+// Single columns (fans off): the marching stages these tests pin down index columns by
+// wall point; fans_test.cpp turns fans on where it tests them.
 inline ExtrusionParams growth_params(int n, double h1, double r) {
   ExtrusionParams p;
+  p.fan_angle_deg = 0.0;
   p.growth.layers = n;
   p.growth.first_height = h1;
   p.growth.growth_ratio = r;
@@ -90,7 +93,9 @@ inline std::vector<std::vector<std::int64_t>> cell_faces(const VolumeMesh& m, st
     case CellType::kWedge:
       return {{n[0], n[1], n[2]}, {n[3], n[4], n[5]}, {n[0], n[1], n[4], n[3]}, {n[1], n[2], n[5], n[4]},
               {n[2], n[0], n[3], n[5]}};
-    case CellType::kHex: break;
+    case CellType::kHex:
+      return {{n[0], n[1], n[2], n[3]}, {n[4], n[5], n[6], n[7]}, {n[0], n[1], n[5], n[4]},
+              {n[1], n[2], n[6], n[5]}, {n[2], n[3], n[7], n[6]}, {n[3], n[0], n[4], n[7]}};
   }
   return {};
 }
@@ -128,7 +133,10 @@ inline double cell_volume_divergence(const VolumeMesh& m, std::size_t c) {
       faces = {{n[0], n[1], n[2]}, {n[3], n[5], n[4]}, {n[0], n[3], n[4], n[1]}, {n[1], n[4], n[5], n[2]},
                {n[2], n[5], n[3], n[0]}};
       break;
-    case CellType::kHex: break;
+    case CellType::kHex:
+      faces = {{n[0], n[3], n[2], n[1]}, {n[4], n[5], n[6], n[7]}, {n[0], n[1], n[5], n[4]},
+               {n[1], n[2], n[6], n[5]}, {n[2], n[3], n[7], n[6]}, {n[3], n[0], n[4], n[7]}};
+      break;
   }
   const Vec3 o{0, 0, 0};
   double v = 0.0;

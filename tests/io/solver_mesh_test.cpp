@@ -62,6 +62,34 @@ TEST(SolverMesh, PointsNoCellUsesAreDroppedAndTheCellsRenumbered) {
   EXPECT_EQ(s.patches[0].size, 6u);
 }
 
+TEST(SolverMesh, AQuadFaceJoinsThePatchThatListsBothItsHalves) {
+  const VolumeMesh m = testing::grid_mesh(2, 1, 1, GridCell::kHex);
+  // The top (z = 1) quads of the two hexes: one listed along each diagonal, and one
+  // half of a third quad that is not a face (the patch must not take a quad by half).
+  PatchTriangles top{"top", PatchKind::kOpen, {}};
+  int n_top = 0;
+  for (std::size_t c = 0; c < m.n_cells(); ++c) {
+    const std::int64_t* n = m.connectivity.data() + m.offsets[c] + 4;  // VTK hex top 4..7
+    if (n_top++ == 0)
+      top.triangles.insert(top.triangles.end(), {{n[0], n[1], n[2]}, {n[2], n[3], n[0]}});
+    else
+      top.triangles.insert(top.triangles.end(), {{n[1], n[2], n[3]}, {n[3], n[0], n[1]}});
+  }
+  PatchTriangles half{"half", PatchKind::kWall, {}};
+  const std::int64_t* b = m.connectivity.data() + m.offsets[0];  // the first hex's bottom
+  half.triangles.push_back({b[0], b[1], b[2]});
+  const SolverMesh s = make_solver_mesh(m, {top, half}, "rest");
+  ASSERT_EQ(s.patches.size(), 2u);
+  EXPECT_EQ(s.patches[0].name, "top");
+  EXPECT_EQ(s.patches[0].size, 2u);
+  EXPECT_EQ(s.patches[1].name, "rest");
+  EXPECT_EQ(s.patches[1].size, 8u);
+  for (std::size_t f = s.patches[0].start; f < s.patches[0].start + s.patches[0].size; ++f) {
+    EXPECT_EQ(s.faces.n_nodes[f], 4);
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(s.cells.points[s.faces.nodes[f][k]][2], 1.0);
+  }
+}
+
 TEST(SolverMesh, TwoPatchesWithOneNameAreRejected) {
   const VolumeMesh m = testing::grid_mesh(1, 1, 1, GridCell::kWedges);
   EXPECT_THROW(make_solver_mesh(m, {bottom_triangles(m, "wall"), bottom_triangles(m, "wall")}, "rest"), InputError);

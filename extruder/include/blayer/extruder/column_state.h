@@ -1,5 +1,5 @@
 // Where every column stands while the layers are marched: plain per-column arrays
-// (column v grows from wall point v).
+// (column v grows from wall point v, or from its wall point in a fan layout).
 #pragma once
 
 #include <cstdint>
@@ -21,6 +21,9 @@ struct ColumnState {
 
   // Starts every used point on the wall; unused points are stopped with kNone.
   static ColumnState on_wall(const std::vector<Vec3>& wall_points, const std::vector<char>& used);
+  // Columns at the positions of their wall points, top_id = wall_point[v].
+  static ColumnState on_wall(const std::vector<Vec3>& column_points, const std::vector<char>& used,
+                             const std::vector<int>& wall_point);
 
   // Ends column v for `why`; a column already stopped keeps its first reason.
   void stop(int v, StopReason why) {

@@ -83,10 +83,16 @@ namespace blayer {
 
 struct ExtrusionResult {
   VolumeMesh mesh;
-  TriSurface envelope;                         // wall triangles on the column tops
-  std::vector<std::int64_t> envelope_point_ids;  // envelope point v = mesh point id
-  std::vector<int> column_layers;                // layers reached per wall vertex
-  std::vector<StopReason> stop_reason;           // per wall vertex
+  // The front's triangles on the column tops (one point per column; without fans the
+  // wall's triangles; with fans also the strips' halves and the corner patches, some of
+  // which name one mesh point twice where a fan did not grow: fill_envelope() gives the
+  // closed surface the tet fill needs).
+  TriSurface envelope;
+  std::vector<std::int64_t> envelope_point_ids;  // envelope point (column) c = mesh point id
+  std::vector<int> column_layers;                // layers reached per column
+  std::vector<StopReason> stop_reason;           // per column
+  std::vector<int> column_wall_point;            // per column: its wall point
+  std::vector<int> front_wall_face;              // per envelope triangle: its wall triangle, or -1
   ExtrusionReport report;
 };
 

@@ -93,6 +93,12 @@ struct ExtrusionParams {
   // plane, projected into it); every other column stays on the model's side, the plane
   // limiting it like a wall.
   std::optional<SymmetryPlane> symmetry;
+  // Fans at sharp convex edges (fan_layout.h): a convex wall edge turning by more than
+  // fan_angle_deg gets a fan of columns at its points, one per smooth sector along the
+  // sector's own normal, with sub-normals so that neighbouring columns differ by at
+  // most fan_max_sector_deg; 0 disables fans.
+  double fan_angle_deg = 60.0;
+  double fan_max_sector_deg = 30.0;
 };
 
 // Throws InputError naming the field when a parameter is out of its range.

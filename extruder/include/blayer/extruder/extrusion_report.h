@@ -18,6 +18,8 @@
 #include "blayer/extruder/column_plan.h"
 #include "blayer/extruder/column_state.h"
 #include "blayer/extruder/growth_law.h"
+#include "blayer/extruder/fan_layout.h"
+#include "blayer/extruder/wall_planes.h"
 #include "blayer/extruder/wall_topology.h"
 #include "blayer/quality/layer_fidelity.h"
 
@@ -41,6 +43,20 @@ struct ReasonShares {
   std::array<double, kStopReasonCount> area{};
   double total_columns = 0.0;
   double total_area = 0.0;
+};
+
+// Fans at sharp convex edges (fan_layout.h).
+struct FanSummary {
+  int points = 0;           // wall points with a fan of columns
+  int columns = 0;          // their columns (sectors, sub-normals, corner centres)
+  int ridge_edges = 0;      // wall edges with a fan strip
+  int corners = 0;          // fan points on three or more ridge edges
+  int ridge_ends = 0;       // ridge edges from a fan point to a single column
+  int fallback_points = 0;  // fan points that fell back to one column (first layer failed)
+  int failed_points = 0;    // fan points that still grew no layer in the last attempt
+  int attempts = 0;         // marching runs (1 + reruns after fallbacks); 0 without fans
+  std::int64_t cells = 0;   // cells on fan strips and corner patches
+  bool solver_limits_skipped = false;  // limits set but not applied (front_checker.h)
 };
 
 struct ExtrusionReport {
@@ -79,7 +95,9 @@ struct ExtrusionReport {
   std::int64_t n_wedges = 0;
   std::int64_t n_pyramids = 0;
   std::int64_t n_tets = 0;
+  std::int64_t n_hexes = 0;
   std::int64_t n_points = 0;
+  FanSummary fans;
   double min_visibility = 0.0;  // min V over all steps taken
 
   // Wall-clock seconds per phase.
@@ -93,9 +111,12 @@ struct ExtrusionReport {
 };
 
 // Fills the achieved-height, coverage, limit, verdict and cell-count fields of *r from
-// the finished columns, their plan and the mesh.
-void summarise_extrusion(const TriSurface& wall, const WallTopology& topo, const ColumnPlan& plan,
-                         const ColumnState& columns, const VolumeMesh& mesh, ExtrusionReport* r);
+// the finished columns, their plan and the mesh. Heights are above each column's own
+// wall planes; shares count the columns standing on wall triangles (a fan's sub-normal
+// and centre columns carry no wall area and are left out).
+void summarise_extrusion(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+                         const WallPlanes& planes, const ColumnPlan& plan, const ColumnState& columns,
+                         const VolumeMesh& mesh, ExtrusionReport* r);
 
 // One line saying what was delivered when the layer is thinner than asked, e.g.
 // "12.0 % of the wall (10.5 % of the columns) got less than 90 % of the thickness:

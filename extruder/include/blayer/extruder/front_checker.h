@@ -4,12 +4,16 @@
 // It owns the three triangle trees (wall, current front, new front); the proximity rays
 // borrow the first two.
 //
-// All three surfaces live on one point array ("soup") so that shared points are seen
-// as shared: wall point v -> v, current top v -> nv + v (v itself while the column is
-// still on the wall), new top v -> 2 nv + v (the current id where the column does not
-// grow). A new triangle none of whose columns grows is the current (or wall) triangle
-// itself, already checked, so it is neither tested nor a partner; likewise a current
-// triangle that is still the wall triangle.
+// The fronts are the layout's front triangles over the columns (fan_layout.h; without
+// fans, the wall's triangles over the wall points). All three surfaces live on one
+// point array ("soup") so that shared points are seen as shared: wall point w -> w,
+// current top of column c -> nv + c (its wall point while the column is still on the
+// wall), new top c -> nv + nc + c (the current id where the column does not grow). A
+// new triangle none of whose columns grows is the current (or wall) triangle itself,
+// already checked, so it is neither tested nor a partner; likewise a current triangle
+// that is still on the wall. A triangle that names one soup point twice (a fan strip
+// whose fan points are still on the wall) is a segment of its neighbours' edges and is
+// skipped. Cells are checked per layout element (layer_cells.h).
 //
 // Incremental re-checks: within a layer, a cell or new triangle is re-tested in a
 // later attempt only if one of its columns moved or changed growing state, or if it
@@ -36,8 +40,13 @@
 // was called on this checker; otherwise the bottom face's two-cell measures are
 // skipped (the cell-only ones are kept). Incremental re-checks extend to the
 // acceptance verdicts: a face is re-judged when a column of either of its cells moved.
+// With fans the limits judge the cells of the wall triangles (on their sector columns);
+// a side face shared with a fan strip is judged from the wall triangle's side alone
+// (FaceSide::kUnknown), and the fan cells (strips, corner patches, the wall triangles
+// split at ridge ends) pass on the exact test alone. limits_skipped() is set when a
+// layout does not start its front with the wall triangles (none built here does).
 //
-// One tree layout, the wall's, serves every surface of the run (TriangleBvh::refit).
+// One tree layout, the front's, serves every front of the run (TriangleBvh::refit).
 #pragma once
 
 #include <tbb/enumerable_thread_specific.h>
@@ -71,8 +80,15 @@ class FrontChecker {
   // must lie strictly on the model's side of it (a collision otherwise); points of the
   // columns on it lie in it by construction. No solver-acceptance limits.
   FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions);
-  // params.check_collisions and params.solver_limits.
+  // The columns of a layout (topo = build_column_topology(layout)).
+  FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo, bool check_collisions);
+  // params.check_collisions and params.solver_limits. With fans the limits judge the
+  // wall triangles' cells; fan strips, corner patches and the cells split at ridge ends
+  // are checked exactly only (see the header comment).
   FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params);
+  FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+               const ExtrusionParams& params);
+  bool limits_skipped() const { return limits_skipped_; }
 
   // The wall alone, for the wall-gap cap before marching.
   ProximityRays wall_rays() const;
@@ -96,15 +112,20 @@ class FrontChecker {
   void cells_below(int k, const std::vector<Vec3>& top, const std::vector<int>& layers);
   void check_intersections(const std::vector<Vec3>& next);
   Box soup_box(const IndexedTriangle& t) const;
-  void build_edge_neighbours(const TriSurface& wall);
+  void build_edge_neighbours(const TriSurface& wall, const ColumnLayout& layout);
 
   void check_symmetry_side(const std::vector<Vec3>& next);
+  std::int64_t cur_id(int c) const { return (*layers_)[c] == 0 ? wall_point_[c] : nv_ + c; }
 
-  const std::vector<Triangle>* triangles_;
+  const std::vector<Triangle>* triangles_;  // the wall's
+  std::vector<Triangle> front_;             // the front's, over the columns
+  std::vector<LayerElement> elements_;
+  std::vector<int> element_of_triangle_;
+  std::vector<int> wall_point_;
   std::optional<SymmetryPlane> plane_;
   std::vector<char> on_plane_;
   const std::vector<Vec3>* wall_points_;
-  int nv_ = 0, nf_ = 0, k_ = 0;
+  int nv_ = 0, nc_ = 0, nf_ = 0, nt_ = 0, ne_ = 0, k_ = 0;
   bool check_collisions_ = true;
 
   TriangleBvh wall_tree_, cur_tree_, new_tree_;
@@ -122,17 +143,21 @@ class FrontChecker {
   // that holds the shared side face's verdict (its owner's); the centres of the new
   // cells and of the cells below; the front at the start of the previous layer.
   AcceptanceLimits limits_;
+  std::vector<Triangle> acc_tris_;  // the wall triangles on their columns (front's first)
   std::vector<int> edge_neighbour_, side_slot_;
+  std::vector<char> skip_acceptance_;  // wall triangles split at a ridge end
   std::vector<Vec3> centre_, below_centre_, previous_bottom_;
   std::vector<FaceGeometry> side_geo_;  // per slot: the side face seen from its triangle
   int previous_layer_ = -1;
+  bool limits_skipped_ = false;
   bool below_known_ = false;
   std::vector<char> invalid_, cap_bad_, side_face_bad_;
 
   // Attempt state.
   std::vector<char> grows_, prev_grows_, moved_;
   std::vector<Vec3> prev_next_;
-  std::vector<char> bad_cell_, collided_, tri_moved_, tri_grows_, query_;
+  std::vector<char> bad_cell_, elem_moved_;                     // per element
+  std::vector<char> collided_, tri_moved_, tri_grows_, query_;  // per front triangle
   std::vector<char> side_bad_;  // a point of the new triangle off the model's side of the plane
   tbb::enumerable_thread_specific<std::vector<int>> partner_hits_;
 };

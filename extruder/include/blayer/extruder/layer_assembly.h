@@ -1,6 +1,7 @@
 // Assembly of the layer mesh: the wall points, one new point per growing column and
-// layer, one cell per wall triangle and layer (wedge, pyramid or tet by how many of its
-// columns grow, layer_cells.h), and the point and cell arrays of the output.
+// layer, one cell per layout element and layer (a wall triangle's wedge, pyramid or tet
+// by how many of its columns grow; fan wedges, hexahedra and their closures on fan
+// strips; layer_cells.h), and the point and cell arrays of the output.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include "blayer/core/surface.h"
 #include "blayer/core/volume_mesh.h"
 #include "blayer/extruder/column_state.h"
+#include "blayer/extruder/fan_layout.h"
 #include "blayer/extruder/step_directions.h"
 
 namespace blayer {
@@ -18,6 +20,8 @@ class LayerAssembler {
   // Starts the mesh with the wall points (ids 0..V-1); wall point v's `normal` is the
   // wall direction of its column where it has one.
   LayerAssembler(const TriSurface& wall, const StepDirections& wall_directions);
+  // The columns of a layout; wall point w's `normal` is that of its first column.
+  LayerAssembler(const TriSurface& wall, const ColumnLayout& layout, const StepDirections& wall_directions);
 
   // Appends layer k: a point for every column with grows set at next[v], the cells of
   // the layer, and advances the columns (top, top_id, layers, path).
@@ -26,18 +30,23 @@ class LayerAssembler {
 
   // Columns that grew in each committed layer.
   const std::vector<int>& columns_per_layer() const { return columns_per_layer_; }
+  // Cells on fan strips and corner patches (the elements after the wall triangles).
+  std::int64_t fan_cells() const { return fan_cells_; }
   // Smallest visibility of a step taken (1 when none was).
   double min_visibility() const { return min_visibility_; }
   // Mesh point p belongs to column point_column()[p].
   const std::vector<int>& point_column() const { return point_column_; }
 
   // Moves the mesh out with its arrays:
-  //   point  normal (3), column_height, stop_reason, layers    (extrude_layers.h)
+  //   point  normal (3), column_height, stop_reason, layers, fan_column   (extrude_layers.h)
   //   cell   layer
   VolumeMesh finish(const ColumnState& columns);
 
  private:
-  const std::vector<Triangle>* triangles_;
+  std::vector<LayerElement> elements_;
+  std::vector<char> in_fan_;  // per column
+  std::size_t n_wall_elements_ = 0;
+  std::int64_t fan_cells_ = 0;
   VolumeMesh mesh_;
   std::vector<Vec3> point_normal_;
   std::vector<int> point_column_;

@@ -25,6 +25,13 @@ std::vector<double> layer_steps(int k, const ColumnPlan& plan, const WallPlanes&
 // Columns whose plan ends before layer k stop now, with the limit that ended the plan.
 void stop_planned_ends(int k, const ColumnPlan& plan, ColumnState* columns);
 
+// The columns of a fan point grow together (their strip cells have no closure for a
+// fan split in between): once one of them has stopped, the others stop after the same
+// k layers with its reason (and, with grows, do not grow in layer k). Returns whether
+// any column was stopped.
+bool stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnState* columns,
+                     std::vector<char>* grows = nullptr);
+
 // Proximity of the fronts ahead: the column's remaining path (remaining planned height
 // over its wall visibility) is extended by 1 / proximity_safety and intersected with
 // the wall and current-front triangles not incident to it (front-facing hits only).
@@ -44,7 +51,8 @@ void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& to
 //      is smoothed downward over height_smoothing_rings among the growing columns;
 //   3. ended at k layers when the layer is already at the first height, when k == 0
 //      (the first height is kept: a first layer that cannot be made valid is not grown),
-//      or at once under kTerminate; reason kQuality (a failing cell) or kCollision.
+//      or at once under kTerminate; reason kQuality (a failing cell) or kCollision;
+//      the other columns of its fan point end with it (stop_fan_groups).
 // Returns which columns grow in this layer; *next holds their new tops (the current top
 // for the others).
 std::vector<char> settle_layer(int k, const std::vector<Triangle>& triangles, const WallTopology& topo,

@@ -19,7 +19,11 @@ namespace blayer {
 // column tops), each with a tree over its triangles' boxes and unit triangle normals.
 // Nothing is owned; the arrays must outlive the view.
 struct ProximityRays {
-  const std::vector<Triangle>* triangles = nullptr;
+  const std::vector<Triangle>* triangles = nullptr;        // the wall's
+  // The front's triangles over the columns and each column's wall point (null: the
+  // wall's triangles, one column per wall point).
+  const std::vector<Triangle>* front_triangles = nullptr;
+  const std::vector<int>* wall_point = nullptr;
   const std::vector<Vec3>* wall_points = nullptr;
   const TriangleBvh* wall_tree = nullptr;
   const std::vector<Vec3>* wall_normal = nullptr;
@@ -31,7 +35,8 @@ struct ProximityRays {
   const std::vector<char>* on_plane = nullptr;
 
   // Distance to the first triangle hit along dir from o within t_max that is not
-  // incident to column v and faces the ray (dir . normal < 0: a wall or front seen
+  // incident to column v's wall point (on the front: to a column of that wall point)
+  // and faces the ray (dir . normal < 0: a wall or front seen
   // from its fluid side), or to the symmetry plane for a column off it; +inf if none.
   double first_hit(int v, const Vec3& o, const Vec3& dir, double t_max) const;
 };

@@ -9,6 +9,7 @@
 #include "blayer/core/surface.h"
 #include "blayer/extruder/extrusion_params.h"
 #include "blayer/extruder/wall_topology.h"
+#include "blayer/normals/vertex_normal.h"
 
 namespace blayer {
 
@@ -26,8 +27,21 @@ struct StepDirections {
 // towards the normalised sum of its own and its ok neighbours' directions, fully, by a
 // half or by a quarter, and the first blend whose visibility is not below the
 // unsmoothed direction's (nor min_visibility) is kept; otherwise it stays.
+// Prescribed directions (fan columns on the wall, fan_layout.h): columns with a
+// non-zero n take it with the given visibility, ok when that is >= min_visibility, and
+// are not smoothed; their neighbours smooth towards them like towards any other.
+struct PrescribedDirections {
+  std::vector<Vec3> n;
+  std::vector<double> visibility;
+};
 StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
-                                       const std::vector<char>& active, const ExtrusionParams& p);
+                                       const std::vector<char>& active, const ExtrusionParams& p,
+                                       const PrescribedDirections* prescribed = nullptr);
+
+// The point normal (normal_method) of surface s at point v alone, with topo =
+// build_wall_topology(s); a point on the symmetry plane gets the normal of its fan
+// mirrored about it, in the plane.
+VertexNormal surface_point_normal(const TriSurface& s, const WallTopology& topo, int v, NormalMethod method);
 
 // Directions for a later layer from the previous layer's (column_directions):
 //   kKept        each column keeps its direction while it sees the current front's

@@ -40,7 +40,8 @@ struct BoundaryPatch {
   std::size_t size = 0;
 };
 
-// Triangles, on the volume mesh's point ids, that lie on one patch.
+// Triangles, on the volume mesh's point ids, that lie on one patch. A quad boundary face
+// belongs to the patch that lists both of its halves (along either diagonal).
 struct PatchTriangles {
   std::string name;
   PatchKind kind = PatchKind::kWall;

@@ -35,9 +35,12 @@
 //           tets, and a wedge passes iff every split is a valid tet mesh. This rejects
 //           twisted quad faces whose twist makes some split fold; every affine image
 //           (e.g. a sheared prism) of a valid right prism passes.
-//   hex     8: the corner tet at each node (the node and its three edge-neighbours).
-//           Not decomposition-independent (a strongly twisted hex can pass); hexes are
-//           not produced by blayer, this is the customary check.
+//   hex     58: every tet spanned by four nodes not on one face or one diagonal plane
+//           of the reference cube, i.e. all tets of all splits of the hex into tets
+//           (the corner tets, the customary check, come first). As for the wedge, the
+//           corner tets alone pass a top face twisted by 45 to 90 degrees; these do
+//           not. Every affine image of a cube passes. blayer writes hexes on fan
+//           strips (extruder/layer_cells.h).
 //
 // Exactness: orient3d_sign is exact, so the result is exact for the given doubles:
 // a prism of relative height 1e-12 is decided correctly and the same on every machine.

@@ -15,15 +15,20 @@
 //            triangles (#F by 3) oriented towards the fluid.
 //   targets  the requested first height h1, total thickness T and layer count N.
 // Columns
-//   Every wall point used by a triangle starts a column; it is followed through column
-//   edges, in either direction, from point to point, never back and never onto a wall
-//   point, until no further column edge leaves it. A point with two or more onward
-//   column edges ends its column there and is counted in n_branching (a layer mesh has
-//   none). Per column: the layers reached (edges followed), and for its first point
-//   above the wall and for its top
-//     height_planes  min over the wall triangles incident to the column's wall point of
-//                    the signed height above the triangle's plane: the quantity a growth
-//                    law prescribes, and what the extruder's own report measures;
+//   Every column edge from a wall point to a point off the wall starts a column (one per
+//   wall point, or one per face sector where a fan of columns leaves a sharp edge;
+//   a used wall point with none has one column without layers). A column is followed
+//   through column edges, in either direction, from point to point, never back and
+//   never onto a wall point, as long as an edge turns by less than 60 degrees from the
+//   column's last segment (edges along a ridge or across a fan turn by about 90 and are
+//   not followed); of several such edges the best aligned is taken and the column is
+//   counted in n_branching (a layer mesh without fans has none). Per column: the layers
+//   reached (edges followed), and for its first point above the wall and for its top
+//     height_planes  min over the wall triangles the column stands on (those incident to
+//                    its wall point; at a fan, those whose wall-layer wedge or pyramid
+//                    holds the column's first edge) of the signed height above the
+//                    triangle's plane: the quantity a growth law prescribes, and what
+//                    the extruder's own report measures;
 //     distance       the exact Euclidean distance to the nearest point of any wall
 //                    triangle (a box tree, exact up to rounding): what a solver's wall
 //                    distance sees, and the measure that notices a column leaning
@@ -37,7 +42,7 @@
 //   shares of the grown columns whose first height lies within 1 % and 10 % of h1
 //   (|first/h1 - 1| <= 0.01, 0.1), of all columns reaching 0.9 T, and of all columns
 //   having all N layers (complete); area_coverage: the share of wall area on triangles
-//   whose three columns are complete.
+//   all of whose points' columns are complete.
 // Cost: O(#cells + #V log #F). Throws std::invalid_argument when the wall references a
 // point outside the mesh or a target is not positive.
 #pragma once
@@ -75,8 +80,10 @@ struct FidelityDistribution {
 FidelityDistribution describe_distribution(std::vector<double> values);
 
 struct LayerFidelity {
-  std::vector<ColumnFidelity> columns;  // one per wall point (layers -1 for unused points)
-  int n_columns = 0;                    // wall points used by a triangle
+  std::vector<ColumnFidelity> columns;  // per wall point: its column with the fewest layers
+                                        // (layers -1 for unused points)
+  int n_columns = 0;                    // columns (one or more per wall point used by a triangle)
+  int n_fan_points = 0;                 // wall points with more than one column
   int n_grown = 0;                      // columns with at least one layer
   int n_complete = 0;                   // columns with all N layers
   int n_branching = 0;                  // columns ended at a point with several onward edges

@@ -1,0 +1,333 @@
+#include "blayer/extruder/fan_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "blayer/core/assert.h"
+#include "blayer/core/edge_topology.h"
+#include "blayer/core/union_find.h"
+#include "blayer/normals/fan_geometry.h"
+#include "blayer/normals/vertex_normal.h"
+
+namespace blayer {
+
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+using EdgeKey = std::pair<int, int>;
+EdgeKey edge_key(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+
+// Normalised linear blend towards the great-circle interpolation of unit a and b
+// (slerp), at fraction t.
+Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
+  const double w = angle_between(a, b);
+  if (w < 1e-12) return a;
+  const double s = std::sin(w);
+  return normalized((std::sin((1.0 - t) * w) / s) * a + (std::sin(t * w) / s) * b);
+}
+
+struct Ridge {
+  int a = 0, b = 0;        // a -> b as the first triangle t0 runs it
+  int t0 = -1, t1 = -1;    // the triangles on either side
+};
+
+// Convex ridge edges whose turning angle exceeds the threshold.
+std::vector<Ridge> find_ridges(const TriSurface& wall, const std::vector<Vec3>& fn, double threshold) {
+  std::vector<Ridge> ridges;
+  const EdgeTopology edges = build_edge_topology(wall);
+  for (const SurfaceEdge& e : edges.edges) {
+    if (e.kind != EdgeKind::kManifold) continue;
+    const int t0 = e.triangle[0], t1 = e.triangle[1];
+    if (!(angle_between(fn[t0], fn[t1]) > threshold)) continue;
+    int d = -1;
+    for (int v : wall.triangles[t1])
+      if (v != e.lo && v != e.hi) d = v;
+    if (!(dot(fn[t0], wall.points[d] - wall.points[e.lo]) < 0.0)) continue;  // concave or flat
+    Ridge r;
+    r.t0 = t0;
+    r.t1 = t1;
+    r.a = e.forward[0] ? e.lo : e.hi;
+    r.b = e.forward[0] ? e.hi : e.lo;
+    ridges.push_back(r);
+  }
+  return ridges;
+}
+
+// Fan points: on two or more ridge edges, with a closed fan, not excluded. Keeps the
+// ridges with at least one fan point (a ridge between two single columns is none).
+std::vector<Ridge> ridges_with_fans(const std::vector<Ridge>& ridges, const VertexFans& fans,
+                                    const std::vector<char>& excluded, std::vector<char>* is_fan) {
+  const int nv = static_cast<int>(excluded.size());
+  std::vector<int> degree(nv, 0);
+  for (const Ridge& r : ridges) {
+    ++degree[r.a];
+    ++degree[r.b];
+  }
+  is_fan->assign(nv, 0);
+  for (int v = 0; v < nv; ++v)
+    (*is_fan)[v] = degree[v] >= 2 && !excluded[v] && v < static_cast<int>(fans.fans.size()) && fans.fans[v].closed;
+  std::vector<Ridge> kept;
+  for (const Ridge& r : ridges)
+    if ((*is_fan)[r.a] || (*is_fan)[r.b]) kept.push_back(r);
+  return kept;
+}
+
+// Two ridge-end points joined by a wall edge would split the faces over that edge from
+// both ends: the fan points on ridges to them join no_fan. Returns whether any did.
+bool drop_adjacent_ridge_ends(const TriSurface& wall, const std::vector<Ridge>& ridges,
+                              const std::vector<char>& is_fan, std::vector<char>* no_fan) {
+  std::vector<char> end(is_fan.size(), 0);
+  for (const Ridge& r : ridges)
+    if (is_fan[r.a] != is_fan[r.b]) end[is_fan[r.a] ? r.b : r.a] = 1;
+  std::vector<char> clash(is_fan.size(), 0);
+  for (const Triangle& t : wall.triangles)
+    for (int i = 0; i < 3; ++i)
+      if (end[t[i]] && end[t[(i + 1) % 3]]) clash[t[i]] = clash[t[(i + 1) % 3]] = 1;
+  bool any = false;
+  for (const Ridge& r : ridges)
+    for (auto [x, y] : {std::pair{r.a, r.b}, std::pair{r.b, r.a}})
+      if (clash[x] && is_fan[y] && !(*no_fan)[y]) {
+        (*no_fan)[y] = 1;
+        any = true;
+      }
+  return any;
+}
+
+// The sectors of a fan point: runs of its fan's triangles between ridge edges.
+struct Sectors {
+  std::vector<int> first;            // per sector: index of its first fan triangle
+  std::vector<int> sector_of;        // per fan triangle
+  std::vector<int> column;           // per sector: its column
+};
+
+Sectors sectors_of(const VertexFan& fan, int v, const std::set<EdgeKey>& ridge_set) {
+  const int k = static_cast<int>(fan.triangles.size());
+  std::vector<int> split;  // fan triangle i whose leading edge (v, ring[i]) is a ridge
+  for (int i = 0; i < k; ++i)
+    if (ridge_set.count(edge_key(v, fan.ring[i]))) split.push_back(i);
+  Sectors s;
+  s.first = split;
+  s.sector_of.assign(k, -1);
+  for (std::size_t j = 0; j < split.size(); ++j) {
+    const int end = j + 1 < split.size() ? split[j + 1] : split[0] + k;
+    for (int i = split[j]; i < end; ++i) s.sector_of[i % k] = static_cast<int>(j);
+  }
+  return s;
+}
+
+// The sector's normal at v: the normal method on the sector's triangles alone (an open
+// fan: its link is open, so the methods fall back to the most-visible direction of
+// those faces; a flat sector gives its face normal).
+Vec3 sector_normal(const TriSurface& wall, const VertexFan& fan, int v, const Sectors& s, int sector,
+                   NormalMethod method) {
+  const int k = static_cast<int>(fan.triangles.size());
+  const int begin = s.first[sector];
+  const int end = sector + 1 < static_cast<int>(s.first.size()) ? s.first[sector + 1] : s.first[0] + k;
+  std::vector<Vec3> ring;
+  for (int i = begin; i <= end; ++i) ring.push_back(wall.points[fan.ring[i % k]]);
+  FanGeometry g;
+  build_fan_geometry(wall.points[v], ring, false, default_tolerances(), &g);
+  return compute_vertex_normal(g, method).normal;
+}
+
+}  // namespace
+
+ColumnLayout single_column_layout(const TriSurface& wall) {
+  const int nv = static_cast<int>(wall.points.size());
+  const int nf = static_cast<int>(wall.triangles.size());
+  ColumnLayout out;
+  out.front = wall;
+  out.wall_point.resize(nv);
+  for (int v = 0; v < nv; ++v) out.wall_point[v] = v;
+  out.direction.assign(nv, Vec3{0.0, 0.0, 0.0});
+  out.in_fan.assign(nv, 0);
+  out.faceless.assign(nv, 0);
+  out.wall_face.resize(nf);
+  out.elements.resize(nf);
+  out.element_of_triangle.resize(nf);
+  for (int f = 0; f < nf; ++f) {
+    const Triangle& t = wall.triangles[f];
+    out.wall_face[f] = f;
+    out.elements[f] = {ElementKind::kTriangle, {t[0], t[1], t[2], -1}};
+    out.element_of_triangle[f] = f;
+  }
+  return out;
+}
+
+ColumnLayout build_column_layout(const TriSurface& wall, const VertexFans& fans, const FanParams& p,
+                                 NormalMethod method, const std::vector<char>& excluded) {
+  const int nv = static_cast<int>(wall.points.size());
+  const int nf = static_cast<int>(wall.triangles.size());
+  ColumnLayout out;
+  std::vector<Vec3> fn(nf);
+  for (int f = 0; f < nf; ++f) fn[f] = normalized(triangle_area_vector(wall, wall.triangles[f]));
+  std::vector<Ridge> ridges;
+  std::vector<char> is_fan(nv, 0);
+  if (p.fan_angle_deg > 0.0) {
+    const std::vector<Ridge> candidates = find_ridges(wall, fn, p.fan_angle_deg * kDegToRad);
+    std::vector<char> no_fan = excluded;
+    while (true) {
+      ridges = ridges_with_fans(candidates, fans, no_fan, &is_fan);
+      if (!drop_adjacent_ridge_ends(wall, ridges, is_fan, &no_fan)) break;
+    }
+  }
+  if (ridges.empty()) return single_column_layout(wall);
+  std::set<EdgeKey> ridge_set;
+  std::vector<int> degree(nv, 0);
+  for (const Ridge& r : ridges) {
+    ridge_set.insert(edge_key(r.a, r.b));
+    ++degree[r.a];
+    ++degree[r.b];
+    out.n_ridge_ends += is_fan[r.a] != is_fan[r.b];
+  }
+  out.n_ridge_edges = static_cast<int>(ridges.size());
+
+  // Columns of single points and sector columns of fan points.
+  std::vector<int> plain_column(nv, -1);
+  std::vector<Sectors> sectors(nv);
+  std::vector<std::vector<Vec3>> sector_dir(nv);
+  auto add_column = [&](int v, const Vec3& d, bool fan, bool faceless) {
+    out.wall_point.push_back(v);
+    out.front.points.push_back(wall.points[v]);
+    out.direction.push_back(d);
+    out.in_fan.push_back(fan);
+    out.faceless.push_back(faceless);
+    return out.n_columns() - 1;
+  };
+  for (int v = 0; v < nv; ++v) {
+    if (!is_fan[v]) {
+      plain_column[v] = add_column(v, Vec3{0.0, 0.0, 0.0}, false, false);
+      continue;
+    }
+    ++out.n_fan_points;
+    const VertexFan& fan = fans.fans[v];
+    sectors[v] = sectors_of(fan, v, ridge_set);
+    for (std::size_t s = 0; s < sectors[v].first.size(); ++s) {
+      const Vec3 n = sector_normal(wall, fan, v, sectors[v], static_cast<int>(s), method);
+      sector_dir[v].push_back(n);
+      sectors[v].column.push_back(add_column(v, n, true, false));
+    }
+  }
+  // The sector of triangle f at fan point v.
+  auto sector_at = [&](int v, int f) {
+    const VertexFan& fan = fans.fans[v];
+    const auto it = std::find(fan.triangles.begin(), fan.triangles.end(), f);
+    BLAYER_ASSERT(it != fan.triangles.end());
+    return sectors[v].sector_of[it - fan.triangles.begin()];
+  };
+  auto column_at = [&](int v, int f) { return is_fan[v] ? sectors[v].column[sector_at(v, f)] : plain_column[v]; };
+
+  // Slices per ridge network: m uniform over it, the largest any of its fans needs.
+  UnionFind chains(nv);
+  for (const Ridge& r : ridges) chains.unite(r.a, r.b);
+  std::map<int, int> chain_m;
+  const double max_sector = std::max(p.max_sector_deg, 1.0) * kDegToRad;
+  for (const Ridge& r : ridges) {
+    for (int x : {r.a, r.b}) {
+      if (!is_fan[x]) continue;
+      const double gap = angle_between(sector_dir[x][sector_at(x, r.t0)], sector_dir[x][sector_at(x, r.t1)]);
+      int& m = chain_m[chains.find(x)];
+      m = std::max({m, 1, static_cast<int>(std::ceil(gap / max_sector - 1e-9))});
+    }
+  }
+  // The fan of point x across a ridge between sectors s0 and s1: [column(s0), the
+  // interpolated ones, column(s1)]; shared by both ridge edges of a chain point. A
+  // single point's "fan" is its one column, m + 1 times.
+  std::map<std::array<int, 3>, std::vector<int>> fan_list;
+  auto fan_across = [&](int x, int f0, int f1, int m) {
+    if (!is_fan[x]) return std::vector<int>(m + 1, plain_column[x]);
+    const int s0 = sector_at(x, f0), s1 = sector_at(x, f1);
+    const std::array<int, 3> key{x, std::min(s0, s1), std::max(s0, s1)};
+    auto it = fan_list.find(key);
+    if (it == fan_list.end()) {
+      const int lo = key[1], hi = key[2];
+      std::vector<int> list{sectors[x].column[lo]};
+      for (int j = 1; j < m; ++j)
+        list.push_back(add_column(x, slerp(sector_dir[x][lo], sector_dir[x][hi], double(j) / m), true, true));
+      list.push_back(sectors[x].column[hi]);
+      it = fan_list.emplace(key, list).first;
+    }
+    std::vector<int> l = it->second;
+    if (s0 > s1) std::reverse(l.begin(), l.end());
+    return l;
+  };
+
+  auto add_triangle = [&](const Triangle& t, int wall_face) {
+    out.front.triangles.push_back(t);
+    out.wall_face.push_back(wall_face);
+    out.element_of_triangle.push_back(static_cast<int>(out.elements.size()) - 1);
+  };
+  // Front: wall triangles on their sector columns; a corner at a ridge end splits.
+  std::vector<char> ridge_end(nv, 0);
+  for (const Ridge& r : ridges)
+    if (is_fan[r.a] != is_fan[r.b]) ridge_end[is_fan[r.a] ? r.b : r.a] = 1;
+  for (int f = 0; f < nf; ++f) {
+    const Triangle& t = wall.triangles[f];
+    const Triangle c{column_at(t[0], f), column_at(t[1], f), column_at(t[2], f)};
+    LayerElement e{ElementKind::kTriangle, {c[0], c[1], c[2], -1}};
+    for (int i = 0; i < 3; ++i)
+      if (ridge_end[t[i]]) e.split_at = i;
+    out.elements.push_back(e);
+    add_triangle(c, f);
+  }
+  // Strips along the ridges: quads (L_a[j], L_a[j+1], L_b[j+1], L_b[j]); at a ridge end
+  // (one side a single column P) the quad is the triangle (P, X, Y), X Y consecutive in
+  // the fan.
+  std::set<std::pair<int, int>> quad_edges;  // directed column edges of the strips
+  for (const Ridge& r : ridges) {
+    const int m = chain_m[chains.find(is_fan[r.a] ? r.a : r.b)];
+    const std::vector<int> la = fan_across(r.a, r.t0, r.t1, m);
+    const std::vector<int> lb = fan_across(r.b, r.t0, r.t1, m);
+    for (int j = 0; j < m; ++j) {
+      const std::array<int, 4> q{la[j], la[j + 1], lb[j + 1], lb[j]};
+      for (int k = 0; k < 4; ++k) quad_edges.insert({q[k], q[(k + 1) % 4]});
+      if (is_fan[r.a] && is_fan[r.b]) {
+        out.elements.push_back({ElementKind::kStrip, q});
+        add_triangle({q[0], q[1], q[2]}, -1);
+        add_triangle({q[0], q[2], q[3]}, -1);
+        continue;
+      }
+      LayerElement e;
+      e.kind = ElementKind::kStripEnd;
+      if (is_fan[r.a])  // triangle (P, la[j], la[j+1])
+        e.column = {lb[0], la[j], la[j + 1], -1};
+      else  // triangle (P, lb[j+1], lb[j])
+        e.column = {la[0], lb[j + 1], lb[j], -1};
+      out.elements.push_back(e);
+      add_triangle({e.column[0], e.column[1], e.column[2]}, -1);
+    }
+  }
+  // Corner patches: the loop of directions around the corner, closed around a centre.
+  for (int v = 0; v < nv; ++v) {
+    if (!is_fan[v] || degree[v] < 3) continue;
+    ++out.n_corners;
+    const int n_sectors = static_cast<int>(sectors[v].first.size());
+    std::vector<int> loop;
+    const VertexFan& fan = fans.fans[v];
+    const int k = static_cast<int>(fan.triangles.size());
+    const int m = chain_m[chains.find(v)];
+    for (int s = 0; s < n_sectors; ++s) {
+      // The ridge between sector s and the next: the leading edge of the next one's
+      // first triangle, between that triangle and the one before it (sector s).
+      const int i = sectors[v].first[(s + 1) % n_sectors];
+      const std::vector<int> l = fan_across(v, fan.triangles[(i + k - 1) % k], fan.triangles[i], m);
+      loop.insert(loop.end(), l.begin(), l.end() - 1);
+    }
+    Vec3 sum{0.0, 0.0, 0.0};
+    for (int c : loop) sum += out.direction[c];
+    const int centre = add_column(v, normalized(sum), true, true);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const int x = loop[i], y = loop[(i + 1) % loop.size()];
+      const Triangle t = quad_edges.count({x, y}) > 0 ? Triangle{centre, y, x} : Triangle{centre, x, y};
+      out.elements.push_back({ElementKind::kTriangle, {t[0], t[1], t[2], -1}});
+      add_triangle(t, -1);
+    }
+  }
+  return out;
+}
+
+}  // namespace blayer

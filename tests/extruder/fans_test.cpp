@@ -1,0 +1,532 @@
+// Fans of columns at sharp convex edges: the layout on analytic solids (counts and
+// angles known in closed form), and extrusions with fans checked cell by cell.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "blayer/core/edge_topology.h"
+#include "blayer/core/vertex_fans.h"
+#include "blayer/extruder/extrude_layers.h"
+#include "blayer/extruder/fan_layout.h"
+#include "blayer/extruder/front_checker.h"
+#include "blayer/extruder/wall_topology.h"
+#include "blayer/quality/layer_fidelity.h"
+#include "test_surfaces.h"
+
+namespace blayer {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Directions built from unit face normals by slerp and normalisation: a few ulps.
+constexpr double kAngleTol = 1e-12;
+
+double degrees(double rad) { return rad * 180.0 / kPi; }
+
+ColumnLayout layout_of(const TriSurface& s, double fan_angle = 60.0, double max_sector = 30.0) {
+  return build_column_layout(s, build_vertex_fans(s), FanParams{fan_angle, max_sector}, NormalMethod::kMostNormal,
+                             std::vector<char>(s.points.size(), 0));
+}
+
+std::map<int, std::vector<int>> columns_by_point(const ColumnLayout& l) {
+  std::map<int, std::vector<int>> m;
+  for (int c = 0; c < l.n_columns(); ++c) m[l.wall_point[c]].push_back(c);
+  return m;
+}
+
+Vec3 unit_normal(const TriSurface& s, int f) { return normalized(triangle_area_vector(s, s.triangles[f])); }
+
+// A triangular prism along y (0..width, n_y segments) whose profile in x-z is the
+// isosceles triangle with apex angle `apex_deg` at the origin, opening towards +x up to
+// x = length: the apex edge is a sharp trailing edge. Normals point outward.
+TriSurface wedge_prism(double apex_deg, double length, double width, int n_y) {
+  const double half = 0.5 * apex_deg * kPi / 180.0;
+  const std::array<Vec3, 3> profile{Vec3{0, 0, 0}, Vec3{length, 0, -length * std::tan(half)},
+                                    Vec3{length, 0, length * std::tan(half)}};
+  TriSurface s;
+  for (int j = 0; j <= n_y; ++j)
+    for (const Vec3& p : profile) s.points.push_back({p[0], width * j / n_y, p[2]});
+  auto id = [](int j, int i) { return 3 * j + i; };
+  const Vec3 centre{2.0 * length / 3.0, 0.5 * width, 0.0};
+  auto add = [&](Triangle t) {
+    const Vec3 c = (s.points[t[0]] + s.points[t[1]] + s.points[t[2]]) / 3.0;
+    if (dot(triangle_area_vector(s, t), c - centre) < 0) std::swap(t[1], t[2]);
+    s.triangles.push_back(t);
+  };
+  for (int j = 0; j < n_y; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const int a = id(j, i), b = id(j, (i + 1) % 3), c = id(j + 1, (i + 1) % 3), d = id(j + 1, i);
+      add({a, b, c});
+      add({a, c, d});
+    }
+  add({id(0, 0), id(0, 1), id(0, 2)});
+  add({id(n_y, 0), id(n_y, 1), id(n_y, 2)});
+  return s;
+}
+
+// An L-shaped block: 2 x 2 x 1 voxels minus (1, 1, 0); its inner vertical edge is
+// concave, and each of its ends is a corner of two convex edges and that concave one.
+TriSurface l_block() {
+  return test::voxel_surface({2, 2, 1}, [](int i, int j, int) { return !(i == 1 && j == 1); }, 1.0);
+}
+
+void expect_closed_and_oriented(const TriSurface& front) {
+  const EdgeTopology e = build_edge_topology(front);
+  int bad = 0;
+  for (const SurfaceEdge& edge : e.edges) bad += edge.kind != EdgeKind::kManifold;
+  EXPECT_EQ(bad, 0) << "front edges that are not shared by two oppositely wound triangles";
+}
+
+TEST(FanLayout, BoxEdgesGetTwoFaceColumnsAndCornersThreeWithExactNormals) {
+  const int n = 3;
+  const TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, n);
+  const ColumnLayout l = layout_of(box);
+  EXPECT_EQ(l.n_fan_points, 12 * (n - 1) + 8);
+  EXPECT_EQ(l.n_ridge_edges, 12 * n);
+  EXPECT_EQ(l.n_corners, 8);
+  EXPECT_EQ(l.n_ridge_ends, 0);
+  // 90 degrees between the faces, at most 30 per slice: 3 slices, 2 sub-normals.
+  const auto by_point = columns_by_point(l);
+  int n_edge = 0, n_corner = 0;
+  for (const auto& [w, cols] : by_point) {
+    int faces = 0;
+    for (int c : cols) faces += !l.faceless[c];
+    if (cols.size() == 1) continue;
+    if (faces == 2) {
+      ++n_edge;
+      EXPECT_EQ(cols.size(), 4u);
+    } else {
+      ++n_corner;
+      EXPECT_EQ(faces, 3);
+      EXPECT_EQ(cols.size(), 10u);  // 3 sectors, 3 x 2 sub-normals, a centre
+    }
+  }
+  EXPECT_EQ(n_edge, 12 * (n - 1));
+  EXPECT_EQ(n_corner, 8);
+  EXPECT_EQ(l.elements.size(), box.triangles.size() + 12 * n * 3 + 8 * 9);
+  // Every face column leaves along its face's normal; every sub-normal lies in the plane
+  // of the two normals, 30 or 60 degrees from one of them; a corner's centre is the
+  // diagonal.
+  for (std::size_t t = 0; t < l.front.triangles.size(); ++t) {
+    if (l.wall_face[t] < 0) continue;
+    const Vec3 fn = unit_normal(box, l.wall_face[t]);
+    for (int c : l.front.triangles[t])
+      if (l.in_fan[c]) {
+        EXPECT_LE(angle_between(l.direction[c], fn), kAngleTol);
+      }
+  }
+  for (int c = 0; c < l.n_columns(); ++c) {
+    if (!l.faceless[c]) continue;
+    const Vec3& d = l.direction[c];
+    int zeros = 0;
+    for (int i = 0; i < 3; ++i) zeros += std::fabs(d[i]) < 1e-15;
+    if (zeros == 0) {  // corner centre
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(std::fabs(d[i]), 1.0 / std::sqrt(3.0), 1e-15);
+      continue;
+    }
+    ASSERT_EQ(zeros, 1) << "a sub-normal leaves the plane of its two face normals";
+    double largest = 0.0;
+    for (int i = 0; i < 3; ++i) largest = std::max(largest, std::fabs(d[i]));
+    const double off = degrees(std::acos(std::min(1.0, largest)));
+    EXPECT_NEAR(off, 30.0, 1e-9);
+  }
+  expect_closed_and_oriented(l.front);
+}
+
+TEST(FanLayout, SharpTrailingEdgeGetsSubNormalsAtMostMaxSectorApart) {
+  const double apex = 15.0;
+  const TriSurface w = wedge_prism(apex, 4.0, 2.0, 4);
+  const ColumnLayout l = layout_of(w);
+  // The apex edge turns by 165 degrees: ceil(165 / 30) = 6 slices of 27.5 degrees; the
+  // whole prism is one ridge network, so every fan has 6 slices.
+  const auto by_point = columns_by_point(l);
+  int n_apex = 0;
+  for (const auto& [p, cols] : by_point) {
+    const Vec3& x = w.points[p];
+    if (!(x[0] == 0.0 && x[1] > 0.0 && x[1] < 2.0)) continue;
+    ++n_apex;
+    ASSERT_EQ(cols.size(), 7u);  // 2 face columns, 5 sub-normals
+    // Fan order: consecutive columns along the fan list are 27.5 degrees apart; check
+    // through the strips, whose q0 q1 are neighbours in a fan.
+  }
+  EXPECT_EQ(n_apex, 3);
+  int n_checked = 0;
+  for (const LayerElement& e : l.elements) {
+    if (e.kind != ElementKind::kStrip) continue;
+    const double a = degrees(angle_between(l.direction[e.column[0]], l.direction[e.column[1]]));
+    const Vec3& x = w.points[l.wall_point[e.column[0]]];
+    if (x[0] == 0.0 && w.points[l.wall_point[e.column[2]]][0] == 0.0) {
+      EXPECT_NEAR(a, (180.0 - apex) / 6.0, 1e-9);
+      ++n_checked;
+    }
+    EXPECT_LE(a, 30.0 + 1e-9);
+  }
+  EXPECT_EQ(n_checked, 4 * 6);
+  expect_closed_and_oriented(l.front);
+}
+
+TEST(FanLayout, MixedCornerSplitsIntoTheFlatTopAndTheConcaveSides) {
+  const TriSurface s = l_block();
+  const ColumnLayout l = layout_of(s);
+  expect_closed_and_oriented(l.front);
+  const auto by_point = columns_by_point(l);
+  // The ends of the concave edge, (1, 1, 0) and (1, 1, 1).
+  int n_mixed = 0;
+  for (const auto& [p, cols] : by_point) {
+    const Vec3& x = s.points[p];
+    if (!(x[0] == 1.0 && x[1] == 1.0)) continue;
+    ++n_mixed;
+    ASSERT_EQ(cols.size(), 4u);  // two sectors (90 degrees apart) and 2 sub-normals
+    std::vector<Vec3> sector;
+    for (int c : cols)
+      if (!l.faceless[c]) sector.push_back(l.direction[c]);
+    ASSERT_EQ(sector.size(), 2u);
+    // One sector is the flat top (or bottom); the other the two concave side faces,
+    // whose most normal direction is their bisector, horizontal.
+    const Vec3& flat = std::fabs(sector[0][2]) > 0.5 ? sector[0] : sector[1];
+    const Vec3& sides = std::fabs(sector[0][2]) > 0.5 ? sector[1] : sector[0];
+    EXPECT_NEAR(std::fabs(flat[2]), 1.0, kAngleTol);
+    EXPECT_NEAR(sides[2], 0.0, kAngleTol);
+    EXPECT_NEAR(std::fabs(sides[0]), std::sqrt(0.5), kAngleTol);
+    EXPECT_NEAR(std::fabs(sides[1]), std::sqrt(0.5), kAngleTol);
+  }
+  EXPECT_EQ(n_mixed, 2);
+  // Points inside the concave edge have none (it is no ridge); there are none here
+  // with one voxel of height, so check the ridge count: the L has 6 + 6 rim edges on
+  // top and bottom (in unit segments 8 + 8) and 5 convex vertical edges; the inner
+  // vertical edge is concave.
+  EXPECT_EQ(l.n_ridge_edges, 8 + 8 + 5);
+}
+
+TEST(FanLayout, NoFansBelowTheAngleOrWhenDisabled) {
+  const TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, 2);
+  for (double angle : {0.0, 90.0}) {
+    const ColumnLayout l = layout_of(box, angle);
+    EXPECT_EQ(l.n_fan_points, 0) << angle;
+    EXPECT_EQ(l.n_columns(), static_cast<int>(box.points.size()));
+    EXPECT_EQ(l.front.triangles, box.triangles);
+  }
+}
+
+TEST(FanLayout, RidgesEndingAtSingleColumnsGetEndTrianglesAndSplitNeighbours) {
+  // With fan angle 120 only the 165-degree apex edge is a ridge: its two end points lie
+  // on one ridge edge each and keep single columns. 40 degrees per slice: ceil(165 / 40)
+  // = 5 slices.
+  const TriSurface w = wedge_prism(15.0, 4.0, 2.0, 4);
+  const ColumnLayout l = layout_of(w, 120.0, 40.0);
+  EXPECT_EQ(l.n_ridge_edges, 4);
+  EXPECT_EQ(l.n_ridge_ends, 2);
+  EXPECT_EQ(l.n_fan_points, 3);
+  EXPECT_EQ(l.n_corners, 0);
+  int strips = 0, ends = 0;
+  for (const LayerElement& e : l.elements) {
+    strips += e.kind == ElementKind::kStrip;
+    ends += e.kind == ElementKind::kStripEnd;
+  }
+  EXPECT_EQ(strips, 2 * 5);
+  EXPECT_EQ(ends, 2 * 5);
+  // The wall triangles at the two end points split there on the wall layer: at each,
+  // the cap and three side triangles.
+  int split = 0;
+  for (const LayerElement& e : l.elements) split += e.split_at >= 0;
+  EXPECT_EQ(split, 2 * 4);
+  expect_closed_and_oriented(l.front);
+}
+
+// ---------------------------------------------------------------------------------------
+// Extrusions with fans.
+
+ExtrusionParams fan_params(int n, double h1, double r) {
+  ExtrusionParams p = test::growth_params(n, h1, r);
+  p.fan_angle_deg = 60.0;
+  return p;
+}
+
+double distance_to_surface(const TriSurface& s, const Vec3& q) {
+  double best = HUGE_VAL;
+  for (const Triangle& t : s.triangles) {
+    // Closest point by projection onto the plane when inside, else to the edges.
+    const Vec3 &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
+    const Vec3 nrm = normalized(cross(b - a, c - a));
+    const Vec3 p = q - dot(q - a, nrm) * nrm;
+    auto inside = [&](const Vec3& x, const Vec3& y) { return dot(cross(y - x, p - x), nrm) >= 0.0; };
+    double d;
+    if (inside(a, b) && inside(b, c) && inside(c, a)) {
+      d = std::fabs(dot(q - a, nrm));
+    } else {
+      d = HUGE_VAL;
+      for (auto [x, y] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+        const double u = std::clamp(dot(q - x, y - x) / norm2(y - x), 0.0, 1.0);
+        d = std::min(d, norm(q - (x + u * (y - x))));
+      }
+    }
+    best = std::min(best, d);
+  }
+  return best;
+}
+
+// Every cell valid, every face used by at most two cells, and the faces used once are
+// the wall's triangles and the envelope's faces: its triangles on wall faces and
+// patches, and one quad per grown strip.
+// open_side: for an open wall, whether a free face of the mesh lies over its boundary
+// (the layers' side faces there), given the face's points.
+void expect_conforming_valid_layers(const TriSurface& wall, const ExtrusionResult& r,
+                                    const std::function<bool(const std::vector<Vec3>&)>& open_side = {}) {
+  const VolumeMesh& m = r.mesh;
+  std::int64_t n_bad = 0;
+  for (std::size_t c = 0; c < m.n_cells(); ++c) {
+    const std::vector<Vec3> p = test::cell_corners(m, c);
+    if (cell_validity(m.cell_types[c], p.data()) != Validity::kValid) ++n_bad;
+  }
+  EXPECT_EQ(n_bad, 0) << "cells failing the exact validity test";
+  std::set<std::vector<std::int64_t>> free;
+  for (const auto& [f, n] : test::face_use(m)) {
+    EXPECT_LE(n, 2);
+    if (n == 1) free.insert(f);
+  }
+  // Front triangle i is wall triangle wall_face[i] (or a strip half or patch) on the
+  // column tops; where no column of it grew there is no cell on it.
+  const std::int64_t nv = static_cast<std::int64_t>(wall.points.size());
+  std::set<std::vector<std::int64_t>> expected;
+  for (std::size_t i = 0; i < r.envelope.triangles.size(); ++i) {
+    std::vector<std::int64_t> f;
+    bool grown = false;
+    for (int c : r.envelope.triangles[i]) {
+      f.push_back(r.envelope_point_ids[c]);
+      grown = grown || f.back() >= nv;
+    }
+    if (!grown) continue;
+    std::sort(f.begin(), f.end());
+    f.erase(std::unique(f.begin(), f.end()), f.end());
+    if (f.size() == 3) expected.insert(f);
+    const int wf = r.front_wall_face[i];
+    if (wf < 0) continue;
+    std::vector<std::int64_t> w(wall.triangles[wf].begin(), wall.triangles[wf].end());
+    std::sort(w.begin(), w.end());
+    expected.insert(w);
+  }
+  // Strip tops are quads: their two halves are not faces, the quad is.
+  std::set<std::vector<std::int64_t>> expected_with_quads;
+  for (const auto& f : expected) expected_with_quads.insert(f);
+  std::set<std::vector<std::int64_t>> quads;
+  for (const auto& f : free)
+    if (f.size() == 4) quads.insert(f);
+  for (const auto& q : quads)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::vector<std::int64_t> tri;
+      for (int i = 0; i < 4; ++i)
+        if (i != skip) tri.push_back(q[i]);
+      expected_with_quads.erase(tri);
+    }
+  for (const auto& q : quads) expected_with_quads.insert(q);
+  if (open_side) {
+    for (auto it = free.begin(); it != free.end();) {
+      std::vector<Vec3> pts;
+      for (std::int64_t i : *it) pts.push_back(m.points[i]);
+      it = !expected_with_quads.count(*it) && open_side(pts) ? free.erase(it) : std::next(it);
+    }
+  }
+  EXPECT_EQ(free, expected_with_quads);
+}
+
+TEST(FanExtrusion, BoxLayersAreValidConformingAndExactlyWallNormalAtTheEdges) {
+  const int n = 3, layers = 4;
+  const double h1 = 0.01;
+  const TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, n);
+  const ExtrusionResult r = extrude_layers(box, fan_params(layers, h1, 1.2));
+  expect_conforming_valid_layers(box, r);
+  EXPECT_EQ(r.report.fans.points, 12 * (n - 1) + 8);
+  EXPECT_EQ(r.report.fans.fallback_points, 0);
+  EXPECT_DOUBLE_EQ(r.report.area_coverage, 1.0);
+  // Cells: per layer a wedge per wall triangle; 3 x 12 n strips: fan wedges on the
+  // wall, hexes above; 8 x 9 patch triangles: tets on the wall, wedges above.
+  const std::int64_t nf = static_cast<std::int64_t>(box.triangles.size()), strips = 3 * 12 * n, patches = 8 * 9;
+  EXPECT_EQ(r.report.n_wedges, layers * nf + strips + (layers - 1) * patches);
+  EXPECT_EQ(r.report.n_hexes, (layers - 1) * strips);
+  EXPECT_EQ(r.report.n_tets, patches);
+  EXPECT_EQ(r.report.fans.cells, layers * (strips + patches));
+  // First points: column c's first point is mesh point #wall + c (all grew). The
+  // distance to the box is h1 for every column, and a face column leaves along its
+  // face's normal.
+  const std::size_t nv = box.points.size();
+  // The mesh-only measure follows each face column of a fan (not the sub-normals,
+  // which leave the wall through no column edge): every column exact in both measures.
+  const double total = h1 * (std::pow(1.2, layers) - 1.0) / 0.2;
+  const LayerFidelity f = measure_layer_fidelity(r.mesh, box, {h1, total, layers});
+  int face_columns = 0;
+  const ColumnLayout l = layout_of(box);
+  for (int c = 0; c < l.n_columns(); ++c) face_columns += !l.faceless[c];
+  EXPECT_EQ(f.n_columns, face_columns);
+  EXPECT_EQ(f.n_fan_points, 12 * (n - 1) + 8);
+  EXPECT_EQ(f.n_branching, 0);
+  EXPECT_DOUBLE_EQ(f.first_within_1pct_planes, 1.0);
+  EXPECT_DOUBLE_EQ(f.first_within_1pct_distance, 1.0);
+  EXPECT_DOUBLE_EQ(f.complete_share, 1.0);
+  EXPECT_DOUBLE_EQ(f.area_coverage, 1.0);
+  for (std::size_t c = 0; c < r.column_layers.size(); ++c) {
+    ASSERT_EQ(r.column_layers[c], layers);
+    const Vec3& q = r.mesh.points[nv + c];
+    Vec3 nearest;
+    for (int i = 0; i < 3; ++i) nearest[i] = std::clamp(q[i], 0.0, 1.0);
+    EXPECT_NEAR(norm(q - nearest), h1, 1e-12) << "column " << c;
+  }
+}
+
+// The solver-acceptance limits judge the wall triangles' cells of a fanned front: on a
+// box, one layer along the exact face and fan directions passes a tight boundary
+// skewness limit (right prisms: 0); shearing the top face's own columns keeps every
+// cell valid but fails the sheared cells: only columns on the top face are blamed.
+TEST(FanExtrusion, SolverLimitsJudgeTheWallTrianglesCellsOfAFannedFront) {
+  const TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, 3);
+  const ColumnLayout l = layout_of(box);
+  ASSERT_TRUE(l.has_fans());
+  const int nc = l.n_columns();
+  std::vector<Vec3> dir(nc);
+  for (int c = 0; c < nc; ++c) dir[c] = l.direction[c];
+  for (std::size_t f = 0; f < box.triangles.size(); ++f)
+    for (int c : l.front.triangles[f])
+      if (!l.in_fan[c]) dir[c] = unit_normal(box, static_cast<int>(f));
+  const double h = 0.01;
+  auto layer = [&](double shear) {
+    std::vector<Vec3> next(nc);
+    for (int c = 0; c < nc; ++c) {
+      next[c] = l.front.points[c] + h * dir[c];
+      if (!l.in_fan[c] && l.front.points[c][2] == 1.0) next[c] += Vec3{shear, 0, 0};
+    }
+    return next;
+  };
+  ExtrusionParams p;
+  p.check_collisions = false;
+  p.solver_limits = AcceptanceLimits{};
+  p.solver_limits.max_boundary_skewness = 0.05;
+  const WallTopology topo = build_column_topology(l);
+  const std::vector<int> layers(nc, 0);
+  const std::vector<char> grows(nc, 1);
+  auto run = [&](bool limited, double shear) {
+    FrontChecker checker = limited ? FrontChecker(box, l, topo, p) : FrontChecker(box, l, topo, false);
+    EXPECT_FALSE(checker.limits_skipped());
+    checker.begin_layer(0, l.front.points, layers);
+    FrontVerdict v;
+    checker.check(0, l.front.points, layer(shear), grows, &v);
+    return v;
+  };
+  EXPECT_FALSE(run(true, 0.0).any_bad) << "right prisms and exact fan cells";
+  EXPECT_FALSE(run(false, 0.05).any_bad) << "the sheared layer is valid";
+  const FrontVerdict v = run(true, 0.05);
+  ASSERT_TRUE(v.any_bad);
+  int n_bad = 0;
+  for (int c = 0; c < nc; ++c) {
+    if (!v.bad[c]) continue;
+    ++n_bad;
+    EXPECT_EQ(v.reason[c], StopReason::kQuality);
+    EXPECT_EQ(l.front.points[c][2], 1.0) << "column " << c << " is not on the sheared face";
+  }
+  EXPECT_GT(n_bad, 0);
+}
+
+TEST(FanExtrusion, TrailingEdgeFaceColumnsLeaveAlongTheirFaceNormals) {
+  const TriSurface w = wedge_prism(15.0, 4.0, 2.0, 4);
+  const double h1 = 0.002;
+  const ExtrusionResult r = extrude_layers(w, fan_params(5, h1, 1.2));
+  expect_conforming_valid_layers(w, r);
+  const ColumnLayout l = layout_of(w);
+  ASSERT_EQ(static_cast<int>(r.column_layers.size()), l.n_columns());
+  const std::size_t nv = w.points.size();
+  for (std::size_t t = 0; t < l.front.triangles.size(); ++t) {
+    if (l.wall_face[t] < 0) continue;
+    const Vec3 fn = unit_normal(w, l.wall_face[t]);
+    for (int c : l.front.triangles[t]) {
+      ASSERT_GT(r.column_layers[c], 0);
+      const Vec3 seg = r.mesh.points[nv + c] - w.points[l.wall_point[c]];
+      if (l.in_fan[c]) {
+        EXPECT_LE(degrees(angle_between(seg, fn)), 1e-9);
+      }
+      EXPECT_NEAR(distance_to_surface(w, r.mesh.points[nv + c]), h1, 1e-12);
+    }
+  }
+}
+
+TEST(FanExtrusion, LBlockMixedCornersAreValidAndConforming) {
+  const TriSurface s = l_block();
+  const ExtrusionResult r = extrude_layers(s, fan_params(4, 0.02, 1.2));
+  expect_conforming_valid_layers(s, r);
+  EXPECT_GT(r.report.fans.points, 0);
+  EXPECT_EQ(r.report.fans.failed_points, 0);
+}
+
+TEST(FanExtrusion, RidgeEndsCloseWithSplitCellsThatConform) {
+  const TriSurface w = wedge_prism(15.0, 4.0, 2.0, 4);
+  ExtrusionParams p = fan_params(4, 0.002, 1.2);
+  p.fan_angle_deg = 120.0;
+  p.fan_max_sector_deg = 40.0;
+  const ExtrusionResult r = extrude_layers(w, p);
+  expect_conforming_valid_layers(w, r);
+  EXPECT_EQ(r.report.fans.ridge_ends, 2);
+  // 12 single columns and 3 fans of 2 + 4: all grow the wall layer. There, each end's
+  // 5 slices are 2 tets each, and each end's 4 wall triangles a pyramid and a tet.
+  ASSERT_FALSE(r.report.columns_per_layer.empty());
+  EXPECT_EQ(r.report.columns_per_layer[0], 12 + 3 * 6);
+  const DataArray* layer = nullptr;
+  for (const DataArray& a : r.mesh.cell_data)
+    if (a.name == "layer") layer = &a;
+  ASSERT_NE(layer, nullptr);
+  std::map<CellType, int> wall_layer;
+  for (std::size_t c = 0; c < r.mesh.n_cells(); ++c)
+    if (layer->values[c] == 0) ++wall_layer[r.mesh.cell_types[c]];
+  EXPECT_EQ(wall_layer[CellType::kTet], 2 * 5 * 2 + 2 * 4);
+  EXPECT_EQ(wall_layer[CellType::kPyramid], 2 * 4);
+  EXPECT_EQ(wall_layer[CellType::kWedge], 26 - 2 * 4 + 2 * 5);  // other triangles, fan wedges
+  EXPECT_EQ(wall_layer[CellType::kHex], 0);
+}
+
+TEST(FanExtrusion, AnOpenBoxsFansEndAtItsRim) {
+  // The top face removed: the vertical edges' top points are boundary points, single
+  // columns; the fans of the points below end there.
+  const TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, 3);
+  TriSurface open;
+  open.points = box.points;
+  for (const Triangle& t : box.triangles) {
+    bool top = true;
+    for (int v : t) top = top && box.points[v][2] == 1.0;
+    if (!top) open.triangles.push_back(t);
+  }
+  const ExtrusionResult r = extrude_layers(open, fan_params(3, 0.01, 1.2));
+  // The rim's columns grow horizontally, in the plane z = 1.
+  expect_conforming_valid_layers(open, r, [](const std::vector<Vec3>& pts) {
+    for (const Vec3& x : pts)
+      if (std::fabs(x[2] - 1.0) > 1e-12) return false;
+    return true;
+  });
+  EXPECT_EQ(r.report.fans.ridge_ends, 4);
+  EXPECT_EQ(r.report.fans.fallback_points, 0);
+  EXPECT_DOUBLE_EQ(r.report.area_coverage, 1.0);
+  EXPECT_EQ(r.report.fans.points, 4 * 2 + 4 * 2 + 4);  // vertical edges, bottom edges, bottom corners
+}
+
+TEST(FanExtrusion, AFanThatCannotGrowFallsBackToOneColumn) {
+  // A hexagonal prism: its caps meet the sides at 90 degree ridges; the side edges turn
+  // by exactly 60 degrees and are no ridges, so each rim point's side sector holds two
+  // faces 60 degrees apart, visibility cos 30 = 0.866. Asking for 0.9 stops those
+  // sector columns on the wall: the rims fall back to single columns.
+  const TriSurface s = test_surfaces::capped_cylinder(6, 2, 1.0, 1.0);
+  ExtrusionParams p = fan_params(3, 0.01, 1.2);
+  p.fan_angle_deg = 65.0;  // the side edges turn by 60 degrees to rounding: keep them out
+  p.min_visibility = 0.9;
+  const ExtrusionResult r = extrude_layers(s, p);
+  EXPECT_EQ(r.report.fans.fallback_points, 12);
+  EXPECT_EQ(r.report.fans.points, 0);
+  EXPECT_EQ(r.report.fans.attempts, 1);  // found before marching: no rerun
+  expect_conforming_valid_layers(s, r);
+  // With the default visibility floor the rims keep their fans.
+  p.min_visibility = ExtrusionParams{}.min_visibility;
+  const ExtrusionResult ok = extrude_layers(s, p);
+  EXPECT_EQ(ok.report.fans.points, 12);
+  EXPECT_EQ(ok.report.fans.fallback_points, 0);
+  expect_conforming_valid_layers(s, ok);
+}
+
+}  // namespace
+}  // namespace blayer
