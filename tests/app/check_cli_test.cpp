@@ -8,6 +8,7 @@
 #include "../io/temp_dir.h"
 #include "blayer/io/vtk_io.h"
 #include "run_cli.h"
+#include "separate_wedges.h"
 
 namespace blayer {
 namespace {
@@ -27,17 +28,7 @@ VolumeMesh three_wedges() {
       {a, c, b, a + up, c + up, b + up},
       {a, c, b, half_turn(a), half_turn(c), half_turn(b)},
       {a, c, b, a - up, c - up, b - up}};
-  VolumeMesh m;
-  for (const auto& cell : cells) {
-    const auto base = static_cast<std::int64_t>(m.points.size());
-    std::int64_t nodes[6];
-    for (int i = 0; i < 6; ++i) {
-      m.points.push_back(cell[i]);
-      nodes[i] = base + i;
-    }
-    m.add_cell(CellType::kWedge, nodes);
-  }
-  return m;
+  return test::separate_wedges(cells);
 }
 
 TEST(CheckCommand, CountsTwistedAndInvertedCellsApartAndFailsOnBoth) {

@@ -8,6 +8,7 @@
 
 #include "blayer/quality/cell_metrics.h"
 #include "blayer/quality/mesh_check.h"
+#include "separate_wedges.h"
 #include "test_cells.h"
 
 namespace blayer {
@@ -25,24 +26,6 @@ std::vector<Vec3> twisted_prism(double angle) {
                          1.0};
   }
   return p;
-}
-
-// One mesh of separate wedges, each with its own six points and a `layer` value.
-VolumeMesh wedges(const std::vector<std::vector<Vec3>>& cells) {
-  VolumeMesh m;
-  DataArray layer{"layer", 1, true, {}};
-  for (const auto& cell : cells) {
-    const auto base = static_cast<std::int64_t>(m.points.size());
-    std::int64_t nodes[6];
-    for (int i = 0; i < 6; ++i) {
-      m.points.push_back(cell[i]);
-      nodes[i] = base + i;
-    }
-    m.add_cell(CellType::kWedge, nodes);
-    layer.values.push_back(static_cast<double>(layer.values.size()));
-  }
-  m.cell_data.push_back(layer);
-  return m;
 }
 
 TEST(TwistedCells, AHalfTurnTwistIsTwistedWithEveryCornerJacobianPositive) {
@@ -86,7 +69,7 @@ TEST(TwistedCells, ClassesAgreeWithCornerJacobianSignsOverATwistSweep) {
 
 TEST(TwistedCells, TheCheckCountsTwistedAndInvertedApartAndBothFail) {
   const VolumeMesh m =
-      wedges({test::right_prism(), twisted_prism(M_PI), test::mirrored(test::right_prism()), twisted_prism(M_PI)});
+      test::separate_wedges({test::right_prism(), twisted_prism(M_PI), test::mirrored(test::right_prism()), twisted_prism(M_PI)});
   const MeshCheckReport r = check_volume_mesh(m);
   EXPECT_EQ(r.totals.inverted, 1u);
   EXPECT_EQ(r.totals.twisted, 2u);
@@ -112,7 +95,7 @@ TEST(TwistedCells, TheCheckCountsTwistedAndInvertedApartAndBothFail) {
 }
 
 TEST(TwistedCells, AMeshWithOnlyATwistedCellFailsTheCheck) {
-  const MeshCheckReport r = check_volume_mesh(wedges({twisted_prism(M_PI)}));
+  const MeshCheckReport r = check_volume_mesh(test::separate_wedges({twisted_prism(M_PI)}));
   EXPECT_EQ(r.totals.inverted, 0u);
   EXPECT_EQ(r.totals.twisted, 1u);
   EXPECT_FALSE(r.ok());
