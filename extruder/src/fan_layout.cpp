@@ -158,176 +158,226 @@ ColumnLayout single_column_layout(const TriSurface& wall) {
   return out;
 }
 
-ColumnLayout build_column_layout(const TriSurface& wall, const VertexFans& fans, const FanParams& p,
-                                 NormalMethod method, const std::vector<char>& excluded) {
-  const int nv = static_cast<int>(wall.points.size());
-  const int nf = static_cast<int>(wall.triangles.size());
-  ColumnLayout out;
-  std::vector<Vec3> fn(nf);
-  for (int f = 0; f < nf; ++f) fn[f] = normalized(triangle_area_vector(wall, wall.triangles[f]));
-  std::vector<Ridge> ridges;
-  std::vector<char> is_fan(nv, 0);
-  if (p.fan_angle_deg > 0.0) {
-    const std::vector<Ridge> candidates = find_ridges(wall, fn, p.fan_angle_deg * kDegToRad);
-    std::vector<char> no_fan = excluded;
-    while (true) {
-      ridges = ridges_with_fans(candidates, fans, no_fan, &is_fan);
-      if (!drop_adjacent_ridge_ends(wall, ridges, is_fan, &no_fan)) break;
+namespace {
+
+// The layout of one extrusion, built in the order of the header's description: ridges,
+// the columns of single and fan points, the slices per ridge network, then the front's
+// wall triangles, strips and corner patches.
+class LayoutBuilder {
+ public:
+  LayoutBuilder(const TriSurface& wall, const VertexFans& fans, const FanParams& p, NormalMethod method)
+      : wall_(wall), fans_(fans), p_(p), method_(method), nv_(static_cast<int>(wall.points.size())) {}
+
+  // False when no ridge gets a fan (the layout is then single_column_layout's).
+  bool select_ridges(const std::vector<char>& excluded) {
+    const int nf = static_cast<int>(wall_.triangles.size());
+    std::vector<Vec3> fn(nf);
+    for (int f = 0; f < nf; ++f) fn[f] = normalized(triangle_area_vector(wall_, wall_.triangles[f]));
+    is_fan_.assign(nv_, 0);
+    if (p_.fan_angle_deg > 0.0) {
+      const std::vector<Ridge> candidates = find_ridges(wall_, fn, p_.fan_angle_deg * kDegToRad);
+      std::vector<char> no_fan = excluded;
+      do ridges_ = ridges_with_fans(candidates, fans_, no_fan, &is_fan_);
+      while (drop_adjacent_ridge_ends(wall_, ridges_, is_fan_, &no_fan));
     }
+    degree_.assign(nv_, 0);
+    for (const Ridge& r : ridges_) {
+      ridge_set_.insert(edge_key(r.a, r.b));
+      ++degree_[r.a];
+      ++degree_[r.b];
+      out_.n_ridge_ends += is_fan_[r.a] != is_fan_[r.b];
+    }
+    out_.n_ridge_edges = static_cast<int>(ridges_.size());
+    return !ridges_.empty();
   }
-  if (ridges.empty()) return single_column_layout(wall);
-  std::set<EdgeKey> ridge_set;
-  std::vector<int> degree(nv, 0);
-  for (const Ridge& r : ridges) {
-    ridge_set.insert(edge_key(r.a, r.b));
-    ++degree[r.a];
-    ++degree[r.b];
-    out.n_ridge_ends += is_fan[r.a] != is_fan[r.b];
-  }
-  out.n_ridge_edges = static_cast<int>(ridges.size());
 
   // Columns of single points and sector columns of fan points.
-  std::vector<int> plain_column(nv, -1);
-  std::vector<Sectors> sectors(nv);
-  std::vector<std::vector<Vec3>> sector_dir(nv);
-  auto add_column = [&](int v, const Vec3& d, bool fan, bool faceless) {
-    out.wall_point.push_back(v);
-    out.front.points.push_back(wall.points[v]);
-    out.direction.push_back(d);
-    out.in_fan.push_back(fan);
-    out.faceless.push_back(faceless);
-    return out.n_columns() - 1;
-  };
-  for (int v = 0; v < nv; ++v) {
-    if (!is_fan[v]) {
-      plain_column[v] = add_column(v, Vec3{0.0, 0.0, 0.0}, false, false);
-      continue;
-    }
-    ++out.n_fan_points;
-    const VertexFan& fan = fans.fans[v];
-    sectors[v] = sectors_of(fan, v, ridge_set);
-    for (std::size_t s = 0; s < sectors[v].first.size(); ++s) {
-      const Vec3 n = sector_normal(wall, fan, v, sectors[v], static_cast<int>(s), method);
-      sector_dir[v].push_back(n);
-      sectors[v].column.push_back(add_column(v, n, true, false));
+  void add_point_columns() {
+    plain_column_.assign(nv_, -1);
+    sectors_.resize(nv_);
+    sector_dir_.resize(nv_);
+    for (int v = 0; v < nv_; ++v) {
+      if (!is_fan_[v]) {
+        plain_column_[v] = add_column(v, Vec3{0.0, 0.0, 0.0}, false, false);
+        continue;
+      }
+      ++out_.n_fan_points;
+      const VertexFan& fan = fans_.fans[v];
+      sectors_[v] = sectors_of(fan, v, ridge_set_);
+      for (std::size_t s = 0; s < sectors_[v].first.size(); ++s) {
+        const Vec3 n = sector_normal(wall_, fan, v, sectors_[v], static_cast<int>(s), method_);
+        sector_dir_[v].push_back(n);
+        sectors_[v].column.push_back(add_column(v, n, true, false));
+      }
     }
   }
-  // The sector of triangle f at fan point v.
-  auto sector_at = [&](int v, int f) {
-    const VertexFan& fan = fans.fans[v];
-    const auto it = std::find(fan.triangles.begin(), fan.triangles.end(), f);
-    BLAYER_ASSERT(it != fan.triangles.end());
-    return sectors[v].sector_of[it - fan.triangles.begin()];
-  };
-  auto column_at = [&](int v, int f) { return is_fan[v] ? sectors[v].column[sector_at(v, f)] : plain_column[v]; };
 
   // Slices per ridge network: m uniform over it, the largest any of its fans needs.
-  UnionFind chains(nv);
-  for (const Ridge& r : ridges) chains.unite(r.a, r.b);
-  std::map<int, int> chain_m;
-  const double max_sector = std::max(p.max_sector_deg, 1.0) * kDegToRad;
-  for (const Ridge& r : ridges) {
-    for (int x : {r.a, r.b}) {
-      if (!is_fan[x]) continue;
-      const double gap = angle_between(sector_dir[x][sector_at(x, r.t0)], sector_dir[x][sector_at(x, r.t1)]);
-      int& m = chain_m[chains.find(x)];
-      m = std::max({m, 1, static_cast<int>(std::ceil(gap / max_sector - 1e-9))});
+  void count_slices() {
+    chains_ = UnionFind(nv_);
+    for (const Ridge& r : ridges_) chains_.unite(r.a, r.b);
+    const double max_sector = std::max(p_.max_sector_deg, 1.0) * kDegToRad;
+    for (const Ridge& r : ridges_)
+      for (int x : {r.a, r.b}) {
+        if (!is_fan_[x]) continue;
+        const double gap = angle_between(sector_dir_[x][sector_at(x, r.t0)], sector_dir_[x][sector_at(x, r.t1)]);
+        int& m = chain_m_[chains_.find(x)];
+        m = std::max({m, 1, static_cast<int>(std::ceil(gap / max_sector - 1e-9))});
+      }
+  }
+
+  // Front: wall triangles on their sector columns; a corner at a ridge end splits.
+  void add_wall_triangles() {
+    std::vector<char> ridge_end(nv_, 0);
+    for (const Ridge& r : ridges_)
+      if (is_fan_[r.a] != is_fan_[r.b]) ridge_end[is_fan_[r.a] ? r.b : r.a] = 1;
+    for (int f = 0; f < static_cast<int>(wall_.triangles.size()); ++f) {
+      const Triangle& t = wall_.triangles[f];
+      const Triangle c{column_at(t[0], f), column_at(t[1], f), column_at(t[2], f)};
+      LayerElement e{ElementKind::kTriangle, {c[0], c[1], c[2], -1}};
+      for (int i = 0; i < 3; ++i)
+        if (ridge_end[t[i]]) e.split_at = i;
+      out_.elements.push_back(e);
+      add_triangle(c, f);
     }
   }
+
+  // Strips along the ridges: quads (L_a[j], L_a[j+1], L_b[j+1], L_b[j]); at a ridge end
+  // (one side a single column P) the quad is the triangle (P, X, Y), X Y consecutive in
+  // the fan.
+  void add_strips() {
+    for (const Ridge& r : ridges_) {
+      const int m = chain_m_[chains_.find(is_fan_[r.a] ? r.a : r.b)];
+      const std::vector<int> la = fan_across(r.a, r.t0, r.t1, m);
+      const std::vector<int> lb = fan_across(r.b, r.t0, r.t1, m);
+      for (int j = 0; j < m; ++j) {
+        const std::array<int, 4> q{la[j], la[j + 1], lb[j + 1], lb[j]};
+        for (int k = 0; k < 4; ++k) quad_edges_.insert({q[k], q[(k + 1) % 4]});
+        if (is_fan_[r.a] && is_fan_[r.b]) {
+          out_.elements.push_back({ElementKind::kStrip, q});
+          add_triangle({q[0], q[1], q[2]}, -1);
+          add_triangle({q[0], q[2], q[3]}, -1);
+          continue;
+        }
+        LayerElement e;
+        e.kind = ElementKind::kStripEnd;
+        if (is_fan_[r.a])  // triangle (P, la[j], la[j+1])
+          e.column = {lb[0], la[j], la[j + 1], -1};
+        else  // triangle (P, lb[j+1], lb[j])
+          e.column = {la[0], lb[j + 1], lb[j], -1};
+        out_.elements.push_back(e);
+        add_triangle({e.column[0], e.column[1], e.column[2]}, -1);
+      }
+    }
+  }
+
+  // Corner patches: the loop of directions around the corner, closed around a centre.
+  void add_corner_patches() {
+    for (int v = 0; v < nv_; ++v) {
+      if (!is_fan_[v] || degree_[v] < 3) continue;
+      ++out_.n_corners;
+      const int n_sectors = static_cast<int>(sectors_[v].first.size());
+      std::vector<int> loop;
+      const VertexFan& fan = fans_.fans[v];
+      const int k = static_cast<int>(fan.triangles.size());
+      const int m = chain_m_[chains_.find(v)];
+      for (int s = 0; s < n_sectors; ++s) {
+        // The ridge between sector s and the next: the leading edge of the next one's
+        // first triangle, between that triangle and the one before it (sector s).
+        const int i = sectors_[v].first[(s + 1) % n_sectors];
+        const std::vector<int> l = fan_across(v, fan.triangles[(i + k - 1) % k], fan.triangles[i], m);
+        loop.insert(loop.end(), l.begin(), l.end() - 1);
+      }
+      Vec3 sum{0.0, 0.0, 0.0};
+      for (int c : loop) sum += out_.direction[c];
+      const int centre = add_column(v, normalized(sum), true, true);
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const int x = loop[i], y = loop[(i + 1) % loop.size()];
+        const Triangle t = quad_edges_.count({x, y}) > 0 ? Triangle{centre, y, x} : Triangle{centre, x, y};
+        out_.elements.push_back({ElementKind::kTriangle, {t[0], t[1], t[2], -1}});
+        add_triangle(t, -1);
+      }
+    }
+  }
+
+  ColumnLayout take() { return std::move(out_); }
+
+ private:
+  int add_column(int v, const Vec3& d, bool fan, bool faceless) {
+    out_.wall_point.push_back(v);
+    out_.front.points.push_back(wall_.points[v]);
+    out_.direction.push_back(d);
+    out_.in_fan.push_back(fan);
+    out_.faceless.push_back(faceless);
+    return out_.n_columns() - 1;
+  }
+
+  void add_triangle(const Triangle& t, int wall_face) {
+    out_.front.triangles.push_back(t);
+    out_.wall_face.push_back(wall_face);
+    out_.element_of_triangle.push_back(static_cast<int>(out_.elements.size()) - 1);
+  }
+
+  // The sector of triangle f at fan point v.
+  int sector_at(int v, int f) const {
+    const VertexFan& fan = fans_.fans[v];
+    const auto it = std::find(fan.triangles.begin(), fan.triangles.end(), f);
+    BLAYER_ASSERT(it != fan.triangles.end());
+    return sectors_[v].sector_of[it - fan.triangles.begin()];
+  }
+  int column_at(int v, int f) const { return is_fan_[v] ? sectors_[v].column[sector_at(v, f)] : plain_column_[v]; }
+
   // The fan of point x across a ridge between sectors s0 and s1: [column(s0), the
   // interpolated ones, column(s1)]; shared by both ridge edges of a chain point. A
   // single point's "fan" is its one column, m + 1 times.
-  std::map<std::array<int, 3>, std::vector<int>> fan_list;
-  auto fan_across = [&](int x, int f0, int f1, int m) {
-    if (!is_fan[x]) return std::vector<int>(m + 1, plain_column[x]);
+  std::vector<int> fan_across(int x, int f0, int f1, int m) {
+    if (!is_fan_[x]) return std::vector<int>(m + 1, plain_column_[x]);
     const int s0 = sector_at(x, f0), s1 = sector_at(x, f1);
     const std::array<int, 3> key{x, std::min(s0, s1), std::max(s0, s1)};
-    auto it = fan_list.find(key);
-    if (it == fan_list.end()) {
+    auto it = fan_list_.find(key);
+    if (it == fan_list_.end()) {
       const int lo = key[1], hi = key[2];
-      std::vector<int> list{sectors[x].column[lo]};
+      std::vector<int> list{sectors_[x].column[lo]};
       for (int j = 1; j < m; ++j)
-        list.push_back(add_column(x, slerp(sector_dir[x][lo], sector_dir[x][hi], double(j) / m), true, true));
-      list.push_back(sectors[x].column[hi]);
-      it = fan_list.emplace(key, list).first;
+        list.push_back(add_column(x, slerp(sector_dir_[x][lo], sector_dir_[x][hi], double(j) / m), true, true));
+      list.push_back(sectors_[x].column[hi]);
+      it = fan_list_.emplace(key, list).first;
     }
     std::vector<int> l = it->second;
     if (s0 > s1) std::reverse(l.begin(), l.end());
     return l;
-  };
+  }
 
-  auto add_triangle = [&](const Triangle& t, int wall_face) {
-    out.front.triangles.push_back(t);
-    out.wall_face.push_back(wall_face);
-    out.element_of_triangle.push_back(static_cast<int>(out.elements.size()) - 1);
-  };
-  // Front: wall triangles on their sector columns; a corner at a ridge end splits.
-  std::vector<char> ridge_end(nv, 0);
-  for (const Ridge& r : ridges)
-    if (is_fan[r.a] != is_fan[r.b]) ridge_end[is_fan[r.a] ? r.b : r.a] = 1;
-  for (int f = 0; f < nf; ++f) {
-    const Triangle& t = wall.triangles[f];
-    const Triangle c{column_at(t[0], f), column_at(t[1], f), column_at(t[2], f)};
-    LayerElement e{ElementKind::kTriangle, {c[0], c[1], c[2], -1}};
-    for (int i = 0; i < 3; ++i)
-      if (ridge_end[t[i]]) e.split_at = i;
-    out.elements.push_back(e);
-    add_triangle(c, f);
-  }
-  // Strips along the ridges: quads (L_a[j], L_a[j+1], L_b[j+1], L_b[j]); at a ridge end
-  // (one side a single column P) the quad is the triangle (P, X, Y), X Y consecutive in
-  // the fan.
-  std::set<std::pair<int, int>> quad_edges;  // directed column edges of the strips
-  for (const Ridge& r : ridges) {
-    const int m = chain_m[chains.find(is_fan[r.a] ? r.a : r.b)];
-    const std::vector<int> la = fan_across(r.a, r.t0, r.t1, m);
-    const std::vector<int> lb = fan_across(r.b, r.t0, r.t1, m);
-    for (int j = 0; j < m; ++j) {
-      const std::array<int, 4> q{la[j], la[j + 1], lb[j + 1], lb[j]};
-      for (int k = 0; k < 4; ++k) quad_edges.insert({q[k], q[(k + 1) % 4]});
-      if (is_fan[r.a] && is_fan[r.b]) {
-        out.elements.push_back({ElementKind::kStrip, q});
-        add_triangle({q[0], q[1], q[2]}, -1);
-        add_triangle({q[0], q[2], q[3]}, -1);
-        continue;
-      }
-      LayerElement e;
-      e.kind = ElementKind::kStripEnd;
-      if (is_fan[r.a])  // triangle (P, la[j], la[j+1])
-        e.column = {lb[0], la[j], la[j + 1], -1};
-      else  // triangle (P, lb[j+1], lb[j])
-        e.column = {la[0], lb[j + 1], lb[j], -1};
-      out.elements.push_back(e);
-      add_triangle({e.column[0], e.column[1], e.column[2]}, -1);
-    }
-  }
-  // Corner patches: the loop of directions around the corner, closed around a centre.
-  for (int v = 0; v < nv; ++v) {
-    if (!is_fan[v] || degree[v] < 3) continue;
-    ++out.n_corners;
-    const int n_sectors = static_cast<int>(sectors[v].first.size());
-    std::vector<int> loop;
-    const VertexFan& fan = fans.fans[v];
-    const int k = static_cast<int>(fan.triangles.size());
-    const int m = chain_m[chains.find(v)];
-    for (int s = 0; s < n_sectors; ++s) {
-      // The ridge between sector s and the next: the leading edge of the next one's
-      // first triangle, between that triangle and the one before it (sector s).
-      const int i = sectors[v].first[(s + 1) % n_sectors];
-      const std::vector<int> l = fan_across(v, fan.triangles[(i + k - 1) % k], fan.triangles[i], m);
-      loop.insert(loop.end(), l.begin(), l.end() - 1);
-    }
-    Vec3 sum{0.0, 0.0, 0.0};
-    for (int c : loop) sum += out.direction[c];
-    const int centre = add_column(v, normalized(sum), true, true);
-    for (std::size_t i = 0; i < loop.size(); ++i) {
-      const int x = loop[i], y = loop[(i + 1) % loop.size()];
-      const Triangle t = quad_edges.count({x, y}) > 0 ? Triangle{centre, y, x} : Triangle{centre, x, y};
-      out.elements.push_back({ElementKind::kTriangle, {t[0], t[1], t[2], -1}});
-      add_triangle(t, -1);
-    }
-  }
-  return out;
+  const TriSurface& wall_;
+  const VertexFans& fans_;
+  const FanParams p_;
+  const NormalMethod method_;
+  const int nv_;
+  ColumnLayout out_;
+  std::vector<Ridge> ridges_;
+  std::set<EdgeKey> ridge_set_;
+  std::vector<char> is_fan_;
+  std::vector<int> degree_, plain_column_;
+  std::vector<Sectors> sectors_;
+  std::vector<std::vector<Vec3>> sector_dir_;
+  UnionFind chains_{0};
+  std::map<int, int> chain_m_;
+  std::map<std::array<int, 3>, std::vector<int>> fan_list_;
+  std::set<std::pair<int, int>> quad_edges_;  // directed column edges of the strips
+};
+
+}  // namespace
+
+ColumnLayout build_column_layout(const TriSurface& wall, const VertexFans& fans, const FanParams& p,
+                                 NormalMethod method, const std::vector<char>& excluded) {
+  LayoutBuilder b(wall, fans, p, method);
+  if (!b.select_ridges(excluded)) return single_column_layout(wall);
+  b.add_point_columns();
+  b.count_slices();
+  b.add_wall_triangles();
+  b.add_strips();
+  b.add_corner_patches();
+  return b.take();
 }
 
 }  // namespace blayer
