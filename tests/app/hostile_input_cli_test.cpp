@@ -97,14 +97,15 @@ TEST(HostileInput, TwoOverlappingBodiesAreRefusedNamingBothComponents) {
 }
 
 // The layers of a cavity's wall grow into the cavity: every column top of the inner
-// box's vertices lies inside the inner box.
+// box's vertices lies inside the inner box (one column per point, so that envelope
+// points 8..15 are the inner box's).
 TEST(HostileInput, ACavityInsideABodyGetsItsLayersInsideTheCavity) {
   TempDir dir;
   PolygonSoup s = box({0, 0, 0}, {3, 3, 3});
   append(&s, box({1, 1, 1}, {2, 2, 2}));
   dir.write("hollow.off", off_text(s));
   const auto r = run_blayer("extrude " + dir.file("hollow.off") + " -o " + dir.file("h.vtu") + " --layers 2" +
-                                " --first-height 0.01 --envelope " + dir.file("env.vtp"),
+                                " --fan-angle 0 --first-height 0.01 --envelope " + dir.file("env.vtp"),
                             dir.file(""), kHangSeconds);
   ASSERT_EQ(r.status, 0) << r.err;
   vtkNew<vtkXMLPolyDataReader> reader;

@@ -85,14 +85,14 @@ std::vector<Vec3> twisted_hex(double deg) {
   return h;
 }
 
-TEST(CellValidity, HexTwistedPastFortyFiveDegreesIsInvertedThoughItsCornerTetsArePositive) {
+TEST(CellValidity, HexTwistedPastFortyFiveDegreesIsTwistedThoughItsCornerTetsArePositive) {
   const std::vector<Vec3> h = twisted_hex(60.0);
   std::size_t n = 0;
   const std::array<int, 4>* tets = validity_tets(CellType::kHex, &n);
   ASSERT_EQ(n, 58u);
   for (std::size_t i = 0; i < 8; ++i)  // the corner tets
     EXPECT_GT(orient3d_sign(h[tets[i][0]], h[tets[i][1]], h[tets[i][2]], h[tets[i][3]]), 0) << i;
-  EXPECT_EQ(validity(CellType::kHex, h), Validity::kInverted);
+  EXPECT_EQ(validity(CellType::kHex, h), Validity::kTwisted);
   EXPECT_EQ(validity(CellType::kHex, twisted_hex(30.0)), Validity::kValid);
 }
 
