@@ -28,12 +28,12 @@ VertexTangents vertex_tangents(const FanGeometry& g, int j, const Vec3& n) {
 }
 
 bool fluid_side_at_vertex(const FanGeometry& g, int j, const Vec3& n) {
-  const auto [t_in, t_out, t_n, left] = vertex_tangents(g, j, n);
+  const VertexTangents t = vertex_tangents(g, j, n);  // not a structured binding: the lambda captures it
   auto beta = [&](const Vec3& x) {
-    const double b = std::atan2(dot(left, x), dot(t_out, x));
+    const double b = std::atan2(dot(t.left, x), dot(t.t_out, x));
     return b < 0.0 ? b + 2.0 * M_PI : b;
   };
-  return beta(t_n) < beta(t_in);
+  return beta(t.t_n) < beta(t.t_in);
 }
 
 CandidatePool::CandidatePool(const FanGeometry& g, const Tolerances& tol, bool constrained, double v_min)
