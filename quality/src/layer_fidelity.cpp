@@ -187,12 +187,6 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
       incident[v].push_back(static_cast<int>(t));
     }
   }
-  auto height_planes = [&](std::size_t w, const Vec3& p) {
-    double h = std::numeric_limits<double>::infinity();
-    for (int t : incident[w]) h = std::min(h, dot(p - wall.points[wall.triangles[t][0]], unit_normal[t]));
-    return h;
-  };
-
   const auto nb = column_neighbours(mesh);
   const auto starts = column_starts(nb, n_wall);
   std::unordered_map<std::int64_t, std::vector<int>> own_triangles;
