@@ -16,7 +16,11 @@
 #include <vtkSmartPointer.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <new>
 #include <string>
 
@@ -80,6 +84,23 @@ class CapturedVtkErrors {
   vtkNew<CapturingOutputWindow> window_;
 };
 
+// Current virtual size (first field of /proc/self/statm, in pages) plus the allowance.
+void limit_address_space_now(std::size_t file_bytes) {
+  unsigned long pages = 0;
+  if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(f, "%lu", &pages) != 1) pages = 0;
+    std::fclose(f);
+  }
+  if (pages == 0) return;
+  const double now = static_cast<double>(pages) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  const double allowed = now + 64.0 * static_cast<double>(file_bytes) + 2.0 * 1024 * 1024 * 1024;
+  rlimit r{};
+  if (::getrlimit(RLIMIT_AS, &r) != 0) return;
+  if (r.rlim_cur != RLIM_INFINITY && static_cast<double>(r.rlim_cur) <= allowed) return;
+  r.rlim_cur = static_cast<rlim_t>(allowed);
+  ::setrlimit(RLIMIT_AS, &r);
+}
+
 PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
   CapturedVtkErrors messages;
   vtkNew<vtkXMLPolyDataReader> reader;
@@ -122,10 +143,35 @@ PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
   return soup;
 }
 
+// The reader's process may map at most what it holds now plus 64 times the file's size
+// plus 2 GiB: far more than any real surface needs (its arrays compress by a few times,
+// not by 64), while a corrupt block header that claims gigabytes (a count of 10^9
+// blocks: an 8 GB table of block sizes) fails at once with bad_alloc instead of making
+// the system zero gigabytes of pages. Not under AddressSanitizer, whose shadow memory
+// reserves terabytes of address space.
+void limit_address_space(std::size_t file_bytes) {
+#if defined(__SANITIZE_ADDRESS__)
+  (void)file_bytes;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  (void)file_bytes;
+#else
+  limit_address_space_now(file_bytes);
+#endif
+#else
+  limit_address_space_now(file_bytes);
+#endif
+}
+
 }  // namespace
 
 PolygonSoup parse_vtp(std::string_view bytes, const std::string& name) {
-  return parse_in_child([&] { return parse_vtp_here(bytes, name); }, name);
+  return parse_in_child(
+      [&] {
+        limit_address_space(bytes.size());
+        return parse_vtp_here(bytes, name);
+      },
+      name);
 }
 
 }  // namespace blayer::detail

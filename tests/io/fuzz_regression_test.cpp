@@ -65,5 +65,18 @@ TEST(FuzzRegressions, VtpWhoseBlockHeaderClaimsExabytesIsRefusedNotACrash) {
   }
 }
 
+// A header that claims a billion compressed blocks (an 8 GB table of block sizes):
+// VTK's reader would have the system zero gigabytes before failing; the reader's
+// process is refused that much address space and the file is named as corrupt at once.
+// Under AddressSanitizer the limit is not set (its shadow memory needs the space).
+TEST(FuzzRegressions, VtpWhoseBlockCountClaimsABillionBlocksIsRefusedAsCorrupt) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "no address-space limit under AddressSanitizer";
+#endif
+  const std::string f = "block_count_claims_a_billion_blocks.vtp";
+  const std::string msg = outcome(kRegressions / "vtp" / f);
+  EXPECT_EQ(msg.rfind(f + ": cannot parse the .vtp file (it claims more data than memory can hold", 0), 0u) << msg;
+}
+
 }  // namespace
 }  // namespace blayer
