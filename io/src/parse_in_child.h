@@ -5,7 +5,8 @@
 // The child runs `parse` and nothing else, sends the soup (or the InputError's message)
 // through a pipe and leaves with _exit. Only the calling thread exists in the child, so
 // `parse` must not need other threads. fill/'s run_isolated does the same for TetGen;
-// io cannot depend on fill (TetGen), hence this small one.
+// io cannot depend on fill (TetGen), hence this small one. Under AddressSanitizer the
+// parse runs in the calling process (the .cpp says why).
 #pragma once
 
 #include <functional>
