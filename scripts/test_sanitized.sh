@@ -48,4 +48,6 @@ exclude=()
 if [[ "${BLAYER_SANITIZE_ALL:-0}" != 1 ]]; then
   exclude=(-E '^PointNormals\.ParallelRunIsDeterministic$')
 fi
-ctest --test-dir "$build" --output-on-failure -j "$jobs" "${exclude[@]}" "$@"
+# --timeout: a test that hangs (a forked child waiting on a lock the fork copied, say)
+# fails after 15 minutes instead of holding the run; the longest takes about 1 minute.
+ctest --test-dir "$build" --output-on-failure -j "$jobs" --timeout 900 "${exclude[@]}" "$@"
