@@ -49,5 +49,5 @@ if [[ "${BLAYER_SANITIZE_ALL:-0}" != 1 ]]; then
   exclude=(-E '^PointNormals\.ParallelRunIsDeterministic$')
 fi
 # --timeout: a test that hangs (a forked child waiting on a lock the fork copied, say)
-# fails after 15 minutes instead of holding the run; the longest takes about 1 minute.
+# fails after 15 minutes instead of holding the run (far above any test left in here).
 ctest --test-dir "$build" --output-on-failure -j "$jobs" --timeout 900 "${exclude[@]}" "$@"
