@@ -47,6 +47,16 @@ TEST(TriangleIntersections, SharedVertexCountsWhenTheTrianglesCrossBeyondIt) {
   EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {0, 5, 6}));
 }
 
+TEST(TriangleIntersections, ATriangleNamingAnIdTwiceMeetsNothing) {
+  // Fan strips whose fan did not grow: (a, a, b) is a segment of its neighbours' edges.
+  // Before the guard, these pairs counted 2 and 4 shared ids and read and wrote past the
+  // shared-id arrays (found by the extrude_check fuzzer).
+  const std::vector<Vec3> p = {A, B, C, {0.3, 0.3, -1}};
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 0, 1}, {0, 2, 3}));
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 0, 1}, {0, 0, 2}));
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 2, 3}, {1, 1, 0}));
+}
+
 TEST(TriangleIntersections, ClosedSphereHasNoIntersectingPairs) {
   const TriSurface s = test::icosphere(2, 1.0);
   std::vector<IndexedTriangle> t;

@@ -28,6 +28,8 @@ bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, co
 // Sharing one vertex v: (v,a,b) and (v,c,d) meet beyond v iff segment ab meets the
 // second triangle or cd meets the first (the common part of two triangles through v
 // ends on one of these opposite edges). Otherwise: iff an edge of one meets the other.
+// A triangle that names one id twice (a fan strip's half where the fan did not grow) is
+// a segment of its neighbours' edges, not a face: it meets nothing.
 bool soup_triangles_intersect(const std::vector<Vec3>& points, const IndexedTriangle& s,
                               const IndexedTriangle& t);
 
