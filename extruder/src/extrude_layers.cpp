@@ -238,7 +238,6 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   res.front_wall_face = layout.wall_face;
   rep.columns_per_layer = assembler.columns_per_layer();
   rep.fans.cells = assembler.fan_cells();
-  rep.fans.solver_limits_skipped = checker.limits_skipped();
   rep.min_visibility = rep.columns_per_layer.empty() ? 0.0 : assembler.min_visibility();
   rep.t_assembly += phase.seconds();
 

@@ -195,8 +195,6 @@ std::string format_extrusion_report(const ExtrusionReport& r) {
          "%d points fell back to one column",
          r.fans.points, r.fans.ridge_edges, r.fans.ridge_ends, r.fans.corners, r.fans.columns,
          static_cast<long long>(r.fans.cells), r.fans.fallback_points);
-  if (r.fans.solver_limits_skipped)
-    line(&s, "solver limits       not applied with fans: cells are checked exactly, faces not against the limits");
   if (r.n_symmetry_columns > 0)
     line(&s, "symmetry plane      %d columns on it, their points at most %.3g from it", r.n_symmetry_columns,
          r.max_symmetry_distance);
@@ -273,8 +271,7 @@ nlohmann::json extrusion_report_to_json(const ExtrusionReport& r) {
                {"fallback_points", r.fans.fallback_points},
                {"failed_points", r.fans.failed_points},
                {"attempts", r.fans.attempts},
-               {"cells", r.fans.cells},
-               {"solver_limits_skipped", r.fans.solver_limits_skipped}};
+               {"cells", r.fans.cells}};
   j["min_visibility"] = r.min_visibility;
   j["time_seconds"] = {{"setup", r.t_setup},   {"normals", r.t_normals},   {"proximity", r.t_proximity},
                        {"checks", r.t_checks}, {"assembly", r.t_assembly}, {"report", r.t_report},

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "blayer/core/assert.h"
 #include "blayer/core/edge_topology.h"
 #include "blayer/extruder/filtered_orient3d.h"
 #include "blayer/extruder/layer_cells.h"
@@ -87,12 +88,10 @@ FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, c
     : FrontChecker(wall, layout, topo, params.check_collisions) {
   if (!params.solver_limits.any()) return;
   // The acceptance passes judge the cells of the wall triangles, which are the first
-  // front triangles, on their columns (fan_layout.h).
+  // front triangles, on their columns (fan_layout.h's contract).
   for (int f = 0; f < nf_; ++f)
-    if (layout.wall_face[f] != f || elements_[f].kind != ElementKind::kTriangle) {
-      limits_skipped_ = true;
-      return;
-    }
+    BLAYER_ASSERT_MSG(layout.wall_face[f] == f && elements_[f].kind == ElementKind::kTriangle,
+                      "a layout's front starts with the wall triangles");
   limits_ = params.solver_limits;
   acc_tris_.assign(front_.begin(), front_.begin() + nf_);
   build_edge_neighbours(wall, layout);

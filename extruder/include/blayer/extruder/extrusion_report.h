@@ -56,7 +56,6 @@ struct FanSummary {
   int failed_points = 0;    // fan points that still grew no layer in the last attempt
   int attempts = 0;         // marching runs (1 + reruns after fallbacks); 0 without fans
   std::int64_t cells = 0;   // cells on fan strips and corner patches
-  bool solver_limits_skipped = false;  // limits set but not applied (front_checker.h)
 };
 
 struct ExtrusionReport {

@@ -43,8 +43,7 @@
 // With fans the limits judge the cells of the wall triangles (on their sector columns);
 // a side face shared with a fan strip is judged from the wall triangle's side alone
 // (FaceSide::kUnknown), and the fan cells (strips, corner patches, the wall triangles
-// split at ridge ends) pass on the exact test alone. limits_skipped() is set when a
-// layout does not start its front with the wall triangles (none built here does).
+// split at ridge ends) pass on the exact test alone.
 //
 // One tree layout, the front's, serves every front of the run (TriangleBvh::refit).
 #pragma once
@@ -88,7 +87,6 @@ class FrontChecker {
   FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params);
   FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
                const ExtrusionParams& params);
-  bool limits_skipped() const { return limits_skipped_; }
 
   // The wall alone, for the wall-gap cap before marching.
   ProximityRays wall_rays() const;
@@ -149,7 +147,6 @@ class FrontChecker {
   std::vector<Vec3> centre_, below_centre_, previous_bottom_;
   std::vector<FaceGeometry> side_geo_;  // per slot: the side face seen from its triangle
   int previous_layer_ = -1;
-  bool limits_skipped_ = false;
   bool below_known_ = false;
   std::vector<char> invalid_, cap_bad_, side_face_bad_;
 
