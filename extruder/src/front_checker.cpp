@@ -117,6 +117,7 @@ void FrontChecker::build_edge_neighbours(const TriSurface& wall, const ColumnLay
     return -1;
   };
   edge_neighbour_.assign(3 * static_cast<std::size_t>(nf_), -2);
+  side_non_orth_limit_.assign(edge_neighbour_.size(), limits_.max_non_orthogonality_deg);
   side_slot_.resize(edge_neighbour_.size());
   for (std::size_t i = 0; i < side_slot_.size(); ++i) side_slot_[i] = static_cast<int>(i);
   skip_acceptance_.assign(nf_, 0);
@@ -139,6 +140,15 @@ void FrontChecker::build_edge_neighbours(const TriSurface& wall, const ColumnLay
     edge_neighbour_[sf] = g;
     edge_neighbour_[sg] = f;
     side_slot_[sf] = side_slot_[sg] = std::min(sf, sg);  // the smaller triangle's
+    const int owner = std::min(sf, sg) / 3, other = owner == f ? g : f;
+    auto corners = [&](int t) {
+      const Triangle& w = wall.triangles[t];
+      return std::array<Vec3, 3>{wall.points[w[0]], wall.points[w[1]], wall.points[w[2]]};
+    };
+    const double inherited = wall_edge_non_orthogonality_deg(
+        corners(owner), corners(other), wall.points[wall_point_[edge.lo]], wall.points[wall_point_[edge.hi]]);
+    side_non_orth_limit_[std::min(sf, sg)] =
+        inherited_non_orthogonality_limit_deg(limits_.max_non_orthogonality_deg, inherited);
   }
 }
 
@@ -371,7 +381,9 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
       const FaceGeometry& geo = side_geo_[slot];
       const FaceSide side = g == -1 ? FaceSide::kBoundary : g == -2 ? FaceSide::kUnknown : FaceSide::kInternal;
       const Vec3& other = g >= 0 ? centre_[g] : centre_[f];
-      side_face_bad_[slot] = judge_face(c.face[i], geo, centre_[f], side, other, limits_) != AcceptanceFailure::kNone;
+      AcceptanceLimits limits = limits_;
+      limits.max_non_orthogonality_deg = side_non_orth_limit_[slot];
+      side_face_bad_[slot] = judge_face(c.face[i], geo, centre_[f], side, other, limits) != AcceptanceFailure::kNone;
     }
   });
   tbb::parallel_for(0, nf_, [&](int f) {

@@ -208,6 +208,25 @@ double face_non_orthogonality_deg(const FaceGeometry& g, const Vec3& own, const 
   return std::acos(std::clamp(c, -1.0, 1.0)) * kRadToDeg;
 }
 
+double wall_edge_non_orthogonality_deg(const std::array<Vec3, 3>& f, const std::array<Vec3, 3>& g, const Vec3& a,
+                                       const Vec3& b) {
+  const Vec3 nf = normalized(cross(f[1] - f[0], f[2] - f[0]));
+  const Vec3 ng = normalized(cross(g[1] - g[0], g[2] - g[0]));
+  const Vec3 cf = (f[0] + f[1] + f[2]) / 3.0, cg = (g[0] + g[1] + g[2]) / 3.0;
+  Vec3 s = cross(b - a, nf + ng);
+  if (dot(s, 0.5 * (a + b) - cf) < 0.0) s = -1.0 * s;  // out of f
+  const Vec3 d = cg - cf;
+  const double c = dot(d, s) / (norm(d) * norm(s) + kRootVSmall);
+  return std::acos(std::clamp(c, -1.0, 1.0)) * kRadToDeg;
+}
+
+double inherited_non_orthogonality_limit_deg(double limit_deg, double inherited_deg) {
+  if (!(limit_deg > 0.0)) return limit_deg;
+  const double half_cosine = 0.5 * std::cos(inherited_deg / kRadToDeg);
+  const double widened = std::acos(std::max(half_cosine, kMinNonOrthogonalityCosine)) * kRadToDeg;
+  return std::max(limit_deg, widened);
+}
+
 double face_skewness(const PolyFace& f, const FaceGeometry& g, const Vec3& own, const Vec3& nei) {
   const Vec3 d = nei - own;
   const Vec3 sv = skew_vector(g, own, d);

@@ -213,4 +213,42 @@ inline TriSurface capped_cylinder(int n_around, int n_along, double r, double le
   return s;
 }
 
+
+// A NACA 0012 wing segment (chord 1 along x, span 1 along z), tessellated as CAD STL
+// exports are: every side triangle spans the whole span, and each end cap is a strip of
+// triangles between the upper and lower surface points with no interior point. With
+// `per_side` cosine-spaced points per surface the trailing-edge triangles are about
+// 1 / (0.5 (1 - cos(pi / (per_side - 1)))) times as long as they are wide (3.6e4 for
+// 300). Every point lies on a 90 degree edge (root or tip). Faces point outward.
+inline TriSurface sliver_wing_segment(int per_side) {
+  const int n = per_side;
+  auto half_thickness = [](double x) {
+    return 0.6 * (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x - 0.1036 * x * x * x * x);
+  };
+  std::vector<std::array<double, 2>> loop;  // upper LE -> TE, then lower TE -> LE
+  std::vector<double> xs(n);
+  for (int i = 0; i < n; ++i) xs[i] = 0.5 * (1.0 - std::cos(M_PI * i / (n - 1)));
+  for (int i = 0; i < n; ++i) loop.push_back({xs[i], half_thickness(xs[i])});
+  for (int i = n - 2; i >= 1; --i) loop.push_back({xs[i], -half_thickness(xs[i])});
+  const int m = static_cast<int>(loop.size());
+  TriSurface s;
+  for (double z : {0.0, 1.0})
+    for (const auto& p : loop) s.points.push_back({p[0], p[1], z});
+  for (int i = 0; i < m; ++i) {
+    const int a = i, b = (i + 1) % m;
+    s.triangles.push_back({a, m + b, b});
+    s.triangles.push_back({a, m + a, m + b});
+  }
+  auto lower = [&](int i) { return i == 0 || i == n - 1 ? i : m - i; };  // the lower point at xs[i]
+  auto cap = [&](int a, int b, int c) {
+    s.triangles.push_back({a, b, c});          // root, facing -z
+    s.triangles.push_back({m + a, m + c, m + b});  // tip, facing +z
+  };
+  for (int i = 0; i + 1 < n; ++i) {
+    if (i + 1 < n - 1) cap(i, i + 1, lower(i + 1));
+    if (i > 0) cap(i, i + 1 < n - 1 ? lower(i + 1) : i + 1, lower(i));
+  }
+  return s;
+}
+
 }  // namespace blayer::test_surfaces

@@ -426,6 +426,34 @@ TEST(FanExtrusion, SolverLimitsJudgeTheWallTrianglesCellsOfAFannedFront) {
   EXPECT_GT(n_bad, 0);
 }
 
+TEST(FanExtrusion, ThinSpanTrianglesOfACadWingSegmentKeepEveryFanAndLayer) {
+  // Every point of the segment is on a 90 degree root or tip edge, and its side
+  // triangles span the span (3.6e4 times as long as wide at the trailing edge), so the
+  // faces between their cells are within 0.003 degree of 90 whatever the columns do.
+  // With the default solver limits those faces are held to twice the wall's own lean,
+  // and every fan keeps all its layers at exactly h1 from the wall.
+  const TriSurface wing = test_surfaces::sliver_wing_segment(300);
+  const double h1 = 2.84e-4;
+  ExtrusionParams p;
+  p.growth.layers = 10;
+  p.growth.first_height = h1;
+  p.growth.growth_ratio = 1.2;
+  const ExtrusionResult r = extrude_layers(wing, p);
+  EXPECT_EQ(r.report.fans.points, static_cast<int>(wing.points.size()));
+  EXPECT_EQ(r.report.fans.fallback_points, 0);
+  int short_columns = 0;
+  for (int layers : r.column_layers) short_columns += layers != 10;
+  EXPECT_EQ(short_columns, 0);
+  expect_conforming_valid_layers(wing, r);
+  // Measured on the mesh alone (quality/layer_fidelity.h): every face column's first
+  // point within 1 % of h1 from the wall surface, and every column at full thickness.
+  const double total = h1 * (std::pow(1.2, 10) - 1.0) / 0.2;
+  const LayerFidelity f = measure_layer_fidelity(r.mesh, wing, {h1, total, 10});
+  EXPECT_DOUBLE_EQ(f.first_within_1pct_distance, 1.0);
+  EXPECT_DOUBLE_EQ(f.complete_share, 1.0);
+  EXPECT_DOUBLE_EQ(f.area_coverage, 1.0);
+}
+
 TEST(FanExtrusion, TrailingEdgeFaceColumnsLeaveAlongTheirFaceNormals) {
   const TriSurface w = wedge_prism(15.0, 4.0, 2.0, 4);
   const double h1 = 0.002;

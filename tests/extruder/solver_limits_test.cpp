@@ -10,6 +10,7 @@
 #include "blayer/extruder/layer_cells.h"
 #include "blayer/extruder/wall_topology.h"
 #include "blayer/quality/cell_validity.h"
+#include "blayer/quality/solver_acceptance.h"
 #include "lcg.h"
 #include "test_surfaces.h"
 
@@ -152,6 +153,38 @@ TEST(SolverLimits, SideFaceBetweenTwoNewCellsFailsBothCells) {
     }
     EXPECT_TRUE(explained) << f;
   }
+}
+
+TEST(SolverLimits, FaceBetweenThinWallTrianglesIsHeldToTwiceTheWallsLean) {
+  // A 5e-5 x 1 rectangle split along its diagonal (a CAD wall's thin triangles): the
+  // face over the diagonal of a straight layer has the wall's own non-orthogonality,
+  // acos(2 w L / (w^2 + L^2)) = acos(1e-4) = 89.9943 degrees, beyond the default limit
+  // 89.99, and no column direction can lower it. It is held to acos(5e-5) instead, so
+  // the layer is kept; a layer leaning the face further than that is still refused.
+  const double w = 5e-5;
+  TriSurface wall;
+  wall.points = {{0, 0, 0}, {w, 0, 0}, {0, 1, 0}, {w, 1, 0}};
+  wall.triangles = {{0, 1, 3}, {0, 3, 2}};
+  std::vector<Vec3> next = wall.points;
+  for (Vec3& p : next) p += Vec3{0.0, 0.0, 1e-5};
+  const std::vector<int> layers(4, 0);
+  const std::vector<char> grows(4, 1);
+  ASSERT_TRUE(every_cell_valid(wall, wall.points, next));
+  ASSERT_GT(wall_edge_non_orthogonality_deg({wall.points[0], wall.points[1], wall.points[3]},
+                                            {wall.points[0], wall.points[3], wall.points[2]}, wall.points[0],
+                                            wall.points[3]),
+            ExtrusionParams{}.solver_limits.max_non_orthogonality_deg);
+  FrontChecker defaults(wall, build_wall_topology(wall), ExtrusionParams{});
+  EXPECT_FALSE(check_layer(&defaults, 0, wall.points, next, layers, grows).any_bad);
+
+  // The columns of the diagonal's points lean by 2 h along +x: both cells' centres move
+  // alike, but the face over the diagonal tilts towards the layer's top, and the cosine
+  // between its normal and the centres' line drops by a factor 1 / sqrt(5) < 1 / 2.
+  next[0] += Vec3{2e-5, 0.0, 0.0};
+  next[3] += Vec3{2e-5, 0.0, 0.0};
+  ASSERT_TRUE(every_cell_valid(wall, wall.points, next));
+  FrontChecker leaning(wall, build_wall_topology(wall), ExtrusionParams{});
+  EXPECT_TRUE(check_layer(&leaning, 0, wall.points, next, layers, grows).any_bad);
 }
 
 TEST(SolverLimits, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {

@@ -282,6 +282,38 @@ TEST(SolverAcceptance, AFaceWhoseTetsTheJudgeAcceptsHasEveryCheckMeshTetPositive
   EXPECT_GT(n_refused, 1000);
 }
 
+// A w x L rectangle split along its diagonal (0,0)-(w,L): the centroids' line crosses
+// the diagonal at an angle whose cosine is 2 w L / (w^2 + L^2), whatever the plane the
+// rectangle lies in. Near 0 degrees acos loses half the digits: 1e-16 in the cosine is
+// 1.5e-8 rad, so the tolerance is 2e-6 degrees.
+TEST(SolverAcceptance, WallEdgeNonOrthogonalityOfASplitRectangleIsInClosedForm) {
+  for (double w : {1.0, 0.1, 1e-3, 5e-5}) {
+    const double L = 1.0;
+    const Vec3 a0{0, 0, 0}, b0{w, 0, 0}, a1{0, L, 0}, b1{w, L, 0};
+    const double expected = std::acos(2.0 * w * L / (w * w + L * L)) * 180.0 / M_PI;
+    EXPECT_NEAR(wall_edge_non_orthogonality_deg({a0, b0, b1}, {a0, b1, a1}, a0, b1), expected, 2e-6) << w;
+    EXPECT_NEAR(wall_edge_non_orthogonality_deg({a0, b1, a1}, {a0, b0, b1}, b1, a0), expected, 2e-6) << w;
+  }
+  // The square's diagonal is crossed at right angles by its centroids' line.
+  using Corners = std::array<Vec3, 3>;
+  EXPECT_NEAR(wall_edge_non_orthogonality_deg(Corners{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}},
+                                              Corners{{{0, 0, 0}, {1, 1, 0}, {0, 1, 0}}}, {0, 0, 0}, {1, 1, 0}),
+              0.0, 1e-6);
+}
+
+TEST(SolverAcceptance, InheritedLimitWidensOnlyNearTheLimitAndNeverToCheckMeshsError) {
+  const double deg = 180.0 / M_PI;
+  EXPECT_EQ(inherited_non_orthogonality_limit_deg(89.99, 30.0), 89.99);
+  EXPECT_EQ(inherited_non_orthogonality_limit_deg(89.99, 89.9), 89.99);  // cos / 2 = 8.7e-4: 89.95
+  EXPECT_NEAR(inherited_non_orthogonality_limit_deg(89.99, std::acos(1e-4) * deg), std::acos(5e-5) * deg, 1e-9);
+  EXPECT_NEAR(inherited_non_orthogonality_limit_deg(70.0, std::acos(1e-4) * deg), std::acos(5e-5) * deg, 1e-9);
+  const double error_side = std::acos(kMinNonOrthogonalityCosine) * deg;
+  EXPECT_EQ(inherited_non_orthogonality_limit_deg(89.99, 90.0), error_side);
+  EXPECT_EQ(inherited_non_orthogonality_limit_deg(89.99, 120.0), error_side);
+  EXPECT_LT(error_side, 90.0);
+  EXPECT_EQ(inherited_non_orthogonality_limit_deg(0.0, 89.999), 0.0);  // off stays off
+}
+
 TEST(SolverAcceptance, LimitsOfZeroJudgeNothing) {
   std::vector<Vec3> p = sheared_prism(1.0, {100.0, 0, 0});
   EXPECT_FALSE(AcceptanceLimits{}.any());

@@ -26,7 +26,11 @@
 //   bottom face (the current front triangle): against the cell below it (layer k-1), or
 //     as a wall boundary face in layer 0;
 //   side faces (the quads and triangles over the wall edges): against the new cell of
-//     the edge's other triangle, or as boundary faces on open wall edges;
+//     the edge's other triangle, or as boundary faces on open wall edges; where the
+//     wall edge's own non-orthogonality nearly reaches the limit (thin CAD triangles),
+//     the face's limit is widened to twice the wall's lean
+//     (inherited_non_orthogonality_limit_deg), so that no column is ended for the
+//     wall's geometry, and never to checkMesh's error;
 //   top face (the new front triangle): as a boundary face, the layers' envelope, until
 //     a later layer covers it and judges it again as its bottom face.
 // Every face of a layers-only mesh is thus judged with the final centres on both its
@@ -143,6 +147,9 @@ class FrontChecker {
   AcceptanceLimits limits_;
   std::vector<Triangle> acc_tris_;  // the wall triangles on their columns (front's first)
   std::vector<int> edge_neighbour_, side_slot_;
+  // Per slot: the non-orthogonality limit of its side face, widened where the wall
+  // edge's own angle is near it (inherited_non_orthogonality_limit_deg).
+  std::vector<double> side_non_orth_limit_;
   std::vector<char> skip_acceptance_;  // wall triangles split at a ridge end
   std::vector<Vec3> centre_, below_centre_, previous_bottom_;
   std::vector<FaceGeometry> side_geo_;  // per slot: the side face seen from its triangle

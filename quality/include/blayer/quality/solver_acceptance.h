@@ -112,6 +112,31 @@ double boundary_face_skewness(const PolyFace& f, const FaceGeometry& g, const Ve
 double face_flatness(const PolyFace& f, const FaceGeometry& g);
 double face_warp_deg(const PolyFace& f);
 
+// The non-orthogonality a face over the wall edge (a, b) inherits from the wall: wall
+// triangles f (the owner, corners f[0..2]) and g on either side of the edge. It is the
+// limit, as the layer height goes to zero, of the face between the two cells of a
+// straight layer along the mean of the triangles' normals: the angle between the line
+// of the triangles' centroids and the normal of the plane through the edge and that
+// mean normal, oriented out of f. No column direction changes it; on the thin triangles
+// of a CAD-tessellated wall (one triangle across a wing's span, aspect ratios of 1e4 and
+// more) it is within 0.01 degree of 90.
+double wall_edge_non_orthogonality_deg(const std::array<Vec3, 3>& f, const std::array<Vec3, 3>& g, const Vec3& a,
+                                       const Vec3& b);
+
+// The non-orthogonality limit for a face whose wall edge inherits `inherited_deg`: the
+// larger of the user's limit and the angle whose cosine is half the inherited one (the
+// face may lean twice as far towards its plane as the wall's own, so that a column is
+// never ended for the wall's geometry and can still turn), but never an angle whose
+// cosine is kMinNonOrthogonalityCosine or less. The widening matters only where the
+// wall's own angle is within a few hundredths of a degree of the default limit
+// (89.99). A limit of 0 stays off.
+double inherited_non_orthogonality_limit_deg(double limit_deg, double inherited_deg);
+
+// checkMesh fails a face whose non-orthogonality cosine is 1e-15 or less; a cosine is
+// computed here with a rounding error of about 1e-16 (unit vectors), and OpenFOAM's
+// centres differ from these by another summation order: 1e-12 keeps a margin of 1000.
+constexpr double kMinNonOrthogonalityCosine = 1e-12;
+
 // The limits a cell must meet; 0 disables a limit.
 struct AcceptanceLimits {
   double max_non_orthogonality_deg = 0.0;  // internal faces
