@@ -213,11 +213,9 @@ double wall_edge_non_orthogonality_deg(const std::array<Vec3, 3>& f, const std::
   const Vec3 nf = normalized(cross(f[1] - f[0], f[2] - f[0]));
   const Vec3 ng = normalized(cross(g[1] - g[0], g[2] - g[0]));
   const Vec3 cf = (f[0] + f[1] + f[2]) / 3.0, cg = (g[0] + g[1] + g[2]) / 3.0;
-  Vec3 s = cross(b - a, nf + ng);
-  if (dot(s, 0.5 * (a + b) - cf) < 0.0) s = -1.0 * s;  // out of f
-  const Vec3 d = cg - cf;
-  const double c = dot(d, s) / (norm(d) * norm(s) + kRootVSmall);
-  return std::acos(std::clamp(c, -1.0, 1.0)) * kRadToDeg;
+  FaceGeometry face{0.5 * (a + b), cross(b - a, nf + ng)};
+  if (dot(face.area, face.centre - cf) < 0.0) face.area = -face.area;  // out of f
+  return face_non_orthogonality_deg(face, cf, cg);
 }
 
 double inherited_non_orthogonality_limit_deg(double limit_deg, double inherited_deg) {
