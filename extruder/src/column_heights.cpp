@@ -36,6 +36,19 @@ void end_at_aspect_ratio(const EdgeLengths& edges, const ExtrusionParams& p, Col
       }
 }
 
+// A fan point's columns grow together (the strips between them need every column), so
+// each plans the layers of its group's shortest, with that column's reason.
+void end_fan_groups_together(const WallTopology& topo, ColumnPlan* plan) {
+  const Csr& g = topo.group_columns;
+  for (int i = 0; i < g.n_rows(); ++i) {
+    const int* shortest = std::min_element(g.begin(i), g.end(i), [&](int a, int b) {
+      return plan->planned_layers[a] < plan->planned_layers[b];
+    });
+    for (const int* c = g.begin(i); c != g.end(i); ++c)
+      end_column_after(plan, *c, plan->planned_layers[*shortest], plan->end_reason[*shortest]);
+  }
+}
+
 }  // namespace
 
 EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo) {
@@ -59,22 +72,18 @@ EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo) 
   return e;
 }
 
-ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& topo, const ResolvedGrowthLaw& law,
-                               const ExtrusionParams& p, const StepDirections& wall_directions,
-                               const ProximityRays& wall_rays) {
+ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& wall_topo, const WallTopology& topo,
+                               const ResolvedGrowthLaw& law, const ExtrusionParams& p,
+                               const StepDirections& wall_directions, const ProximityRays& wall_rays) {
   const int nv = topo.n_points();
+  // The wall's own spacing at each column's wall point (a fan's columns share it).
+  const EdgeLengths at_point = wall_edge_lengths(wall, wall_topo);
   EdgeLengths edges;
-  if (!topo.has_fans()) {
-    edges = wall_edge_lengths(wall, topo);
-  } else {
-    // The wall's own spacing at each column's wall point (a fan's columns share it).
-    const EdgeLengths at_point = wall_edge_lengths(wall, build_wall_topology(wall));
-    edges.mean.resize(nv);
-    edges.shortest.resize(nv);
-    for (int v = 0; v < nv; ++v) {
-      edges.mean[v] = at_point.mean[topo.wall_point[v]];
-      edges.shortest[v] = at_point.shortest[topo.wall_point[v]];
-    }
+  edges.mean.resize(nv);
+  edges.shortest.resize(nv);
+  for (int v = 0; v < nv; ++v) {
+    edges.mean[v] = at_point.mean[topo.wall_point[v]];
+    edges.shortest[v] = at_point.shortest[topo.wall_point[v]];
   }
   ColumnPlan plan = plan_columns(law, law.relative ? edges.mean : std::vector<double>(nv, 1.0));
   std::vector<double> fraction = wall_gap_fractions(topo, plan, p, wall_directions, wall_rays, wall.points);
@@ -89,6 +98,7 @@ ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& topo,
       end_column_after(&plan, v, layers_that_fit(plan, v, 0, budget), reason[v]);
   }
   end_at_aspect_ratio(edges, p, &plan);
+  end_fan_groups_together(topo, &plan);
   return plan;
 }
 

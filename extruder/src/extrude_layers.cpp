@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
@@ -37,9 +35,6 @@ void check_wall(const TriSurface& wall) {
       if (v < 0 || v >= nv) throw InputError("extrude_layers: a wall triangle refers to a missing point");
 }
 
-// Every cell of the layer mesh passes the exact validity test: what the per-layer checks
-// guarantee, re-established from scratch (checked builds only; the caller's mesh check
-// is the run's decision).
 // Marching attempts with fans: the first, and reruns after fan points fell back to one
 // column. A failed first layer at a fan point is rare (the fan's cells are as valid as
 // the wall's own where the sectors are smooth), so two reruns cover what happens.
@@ -47,6 +42,9 @@ constexpr int kMaxFanAttempts = 3;
 // Rounds of the straight-layer precheck before every remaining fan point falls back.
 constexpr int kMaxPrecheckRounds = 3;
 
+// Every cell of the layer mesh passes the exact validity test: what the per-layer checks
+// guarantee, re-established from scratch (checked builds only; the caller's mesh check
+// is the run's decision).
 [[maybe_unused]] bool every_cell_valid(const VolumeMesh& m) {
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
     Vec3 corners[8];
@@ -170,7 +168,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   const TriSurface& start = layout.front;
   StepDirections dirs = wall_directions(wall, wall_topo, layout, topo, planes, params);
   FrontChecker checker(wall, layout, topo, params);
-  ColumnPlan plan = plan_column_heights(wall, topo, rep.growth, params, dirs, checker.wall_rays());
+  ColumnPlan plan = plan_column_heights(wall, wall_topo, topo, rep.growth, params, dirs, checker.wall_rays());
   if (layout.has_fans()) {
     *fan_failures = fan_points_failing_straight_layers(wall, layout, planes, dirs, plan, params);
     if (!fan_failures->empty()) return res;

@@ -10,9 +10,12 @@
 
 #include "blayer/core/edge_topology.h"
 #include "blayer/core/vertex_fans.h"
+#include "blayer/extruder/column_heights.h"
 #include "blayer/extruder/extrude_layers.h"
 #include "blayer/extruder/fan_layout.h"
 #include "blayer/extruder/front_checker.h"
+#include "blayer/extruder/step_directions.h"
+#include "blayer/extruder/wall_planes.h"
 #include "blayer/extruder/wall_topology.h"
 #include "blayer/quality/layer_fidelity.h"
 #include "test_surfaces.h"
@@ -452,6 +455,43 @@ TEST(FanExtrusion, ThinSpanTrianglesOfACadWingSegmentKeepEveryFanAndLayer) {
   EXPECT_DOUBLE_EQ(f.first_within_1pct_distance, 1.0);
   EXPECT_DOUBLE_EQ(f.complete_share, 1.0);
   EXPECT_DOUBLE_EQ(f.area_coverage, 1.0);
+}
+
+// A box facing another across a gap that ends the layers of the facing face's columns
+// (terminate policy): at the points on that face's edges one sector column faces the
+// gap and the others do not, yet the plan gives every column of a fan point the same
+// layers, those of its shortest (the straight-layer precheck and the strips need them).
+TEST(FanExtrusion, PlanGivesEveryColumnOfAFanPointTheLayersOfItsShortest) {
+  const double gap = 0.05;
+  const TriSurface wall =
+      test_surfaces::merged(test_surfaces::box({0, 0, 0}, {1, 1, 1}, 3), test_surfaces::box({1 + gap, 0, 0}, {2 + gap, 1, 1}, 3));
+  const ColumnLayout l = layout_of(wall);
+  ASSERT_TRUE(l.has_fans());
+  const WallTopology wall_topo = build_wall_topology(wall);
+  const WallTopology topo = build_column_topology(l);
+  ExtrusionParams p = fan_params(5, 0.01, 1.5);  // T = 0.13 > 0.45 x gap
+  p.limit_policy = LimitPolicy::kTerminate;
+  p.height_smoothing_rings = 0;
+  const WallPlanes planes(wall, l, topo);
+  PrescribedDirections fan{l.direction, std::vector<double>(l.n_columns(), 0.0)};
+  for (int c = 0; c < l.n_columns(); ++c)
+    if (l.in_fan[c]) fan.visibility[c] = planes.visibility(c, fan.n[c]);
+  const StepDirections d = compute_step_directions(l.front, topo, topo.used, p, &fan);
+  FrontChecker checker(wall, l, topo, false);
+  const ColumnPlan plan =
+      plan_column_heights(wall, wall_topo, topo, resolve_growth_law(p.growth), p, d, checker.wall_rays());
+  int limited_groups = 0;
+  for (int i = 0; i < topo.group_columns.n_rows(); ++i) {
+    const int first = *topo.group_columns.begin(i);
+    bool limited = false, facing_away = false;
+    for (const int* c = topo.group_columns.begin(i); c != topo.group_columns.end(i); ++c) {
+      EXPECT_EQ(plan.planned_layers[*c], plan.planned_layers[first]) << "group " << i;
+      limited = limited || plan.planned_layers[*c] < 5;
+      facing_away = facing_away || std::fabs(d.n[*c][0]) < 0.5;
+    }
+    limited_groups += limited && facing_away;
+  }
+  EXPECT_GT(limited_groups, 0) << "no fan point has a column facing the gap and one facing away";
 }
 
 TEST(FanExtrusion, TrailingEdgeFaceColumnsLeaveAlongTheirFaceNormals) {

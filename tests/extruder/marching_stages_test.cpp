@@ -95,7 +95,7 @@ TEST(ColumnHeights, WallGapFitsColumnsFacingAnotherWallIntoTheSafetyShare) {
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
   FrontChecker checker(wall, build_wall_topology(wall), true);
-  const ColumnPlan plan = plan_column_heights(wall, topo, law, p, d, checker.wall_rays());
+  const ColumnPlan plan = plan_column_heights(wall, topo, topo, law, p, d, checker.wall_rays());
   const int centre = 2 * 5 + 2;
   EXPECT_EQ(plan.limit[centre], StopReason::kWallGap);
   EXPECT_EQ(plan.planned_layers[centre], 4);

@@ -35,10 +35,12 @@ EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo);
 //   aspect     with max_layer_aspect > 0, the column ends before the first layer
 //              higher than max_layer_aspect x the mean wall edge length at v
 //              (reason kAspectRatio).
-// topo: the columns' tables (build_wall_topology(wall), or a layout's
-// build_column_topology); wall: the wall itself.
-ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& topo, const ResolvedGrowthLaw& law,
-                               const ExtrusionParams& p, const StepDirections& wall_directions,
-                               const ProximityRays& wall_rays);
+// A fan point's columns (topo.group_columns) all plan the layers of the shortest of
+// them: they grow together.
+// wall_topo: the wall's own tables (build_wall_topology(wall)); topo: the columns'
+// (wall_topo itself, or a layout's build_column_topology).
+ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& wall_topo, const WallTopology& topo,
+                               const ResolvedGrowthLaw& law, const ExtrusionParams& p,
+                               const StepDirections& wall_directions, const ProximityRays& wall_rays);
 
 }  // namespace blayer
