@@ -1,7 +1,7 @@
 #include "blayer/extruder/wall_topology.h"
 
+#include <algorithm>
 #include <cmath>
-#include <map>
 
 namespace blayer {
 
@@ -15,7 +15,6 @@ WallTopology build_wall_topology(const TriSurface& wall, const std::optional<Sym
   for (int v = 0; v < nv; ++v) t.used[v] = t.vertex_triangles.count(v) > 0;
   t.wall_point.resize(nv);
   for (int v = 0; v < nv; ++v) t.wall_point[v] = v;
-  t.fan_group.assign(nv, -1);
   t.on_plane.assign(nv, 0);
   t.plane = plane;
   if (plane) {
@@ -33,14 +32,18 @@ WallTopology build_column_topology(const ColumnLayout& layout, const std::option
   t.wall_point = layout.wall_point;
   // Groups in column order: a fan point's columns are contiguous from its first sector
   // column on, except the sub-normal and centre columns added later.
-  std::map<int, int> group_of_point;
+  const int n_wall_points =
+      layout.wall_point.empty() ? 0 : 1 + *std::max_element(layout.wall_point.begin(), layout.wall_point.end());
+  std::vector<int> group_of_point(n_wall_points, -1);
   std::vector<std::vector<int>> groups;
   for (int c = 0; c < layout.n_columns(); ++c) {
     if (!layout.in_fan[c]) continue;
-    auto it = group_of_point.emplace(layout.wall_point[c], static_cast<int>(groups.size())).first;
-    if (it->second == static_cast<int>(groups.size())) groups.emplace_back();
-    groups[it->second].push_back(c);
-    t.fan_group[c] = it->second;
+    int& group = group_of_point[layout.wall_point[c]];
+    if (group < 0) {
+      group = static_cast<int>(groups.size());
+      groups.emplace_back();
+    }
+    groups[group].push_back(c);
   }
   for (const std::vector<int>& g : groups) {
     t.group_columns.items.insert(t.group_columns.items.end(), g.begin(), g.end());

@@ -28,7 +28,6 @@ struct WallTopology {
   std::vector<char> on_plane;      // boundary point on the symmetry plane (column in it)
   std::optional<SymmetryPlane> plane;
   std::vector<int> wall_point;     // per column: its wall point (the column itself without fans)
-  std::vector<int> fan_group;      // per column: the group of its fan point, or -1
   Csr group_columns;               // per group: the columns of one fan point (they grow together)
   int n_points() const { return static_cast<int>(used.size()); }
   bool has_fans() const { return group_columns.n_rows() > 0; }
