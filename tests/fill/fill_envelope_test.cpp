@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "blayer/fill/hybrid_mesh.h"
 #include "blayer/quality/cell_validity.h"
 #include "blayer/quality/mesh_check.h"
 
@@ -56,6 +57,23 @@ TEST(FillEnvelope, CapsTheQuadTopOfAHexWithAValidPyramid) {
   const MeshCheckReport check = check_volume_mesh(h.mesh);
   EXPECT_TRUE(check.ok());
   EXPECT_EQ(check.totals.non_conforming, 0u);
+}
+
+// The pyramid cap is fill, not layer: append_fill marks it region 1 beside the tets,
+// the hex region 0.
+TEST(FillEnvelope, TheCapJoinsTheFillsRegion) {
+  HexTop h = hex_top();
+  const FillEnvelope e = fill_envelope(h.envelope, h.ids, &h.mesh);
+  ASSERT_EQ(e.n_caps, 1);
+  FillResult fill;  // no tets: only the region of the cells already there is at stake
+  fill.tets.points = e.surface.points;
+  fill.stats.n_envelope_points = static_cast<std::int64_t>(e.surface.points.size());
+  append_fill(fill, e.point_ids, &h.mesh);
+  const DataArray* region = h.mesh.find_cell_array("region");
+  ASSERT_NE(region, nullptr);
+  ASSERT_EQ(region->values.size(), 2u);
+  EXPECT_EQ(region->values[0], 0.0) << "the hex";
+  EXPECT_EQ(region->values[1], 1.0) << "the cap";
 }
 
 TEST(FillEnvelope, DropsTrianglesNamingAMeshPointTwiceAndMergesSharedPoints) {

@@ -35,7 +35,7 @@ enum class BoundaryMarker : int {
 // point envelope_point_ids[i], every other fill point is appended, in the fill's order.
 // Point arrays get 0 on the new points; cell arrays get 0 on the tets, except "layer",
 // which gets -1; a new int cell array "region" is 0 on the layer cells and 1 on the
-// tets. Returns the mesh point of every fill point (size fill.tets.points.size()).
+// tets and on the cells already marked "layer" -1 (fill_envelope's pyramid caps). Returns the mesh point of every fill point (size fill.tets.points.size()).
 std::vector<std::int64_t> append_fill(const FillResult& fill, const std::vector<std::int64_t>& envelope_point_ids,
                                       VolumeMesh* mesh);
 
