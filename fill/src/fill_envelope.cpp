@@ -21,12 +21,6 @@ Key sorted_key(std::int64_t a, std::int64_t b, std::int64_t c) {
   return k;
 }
 
-bool has_quads(const VolumeMesh& m) {
-  for (CellType t : m.cell_types)
-    if (t == CellType::kHex || t == CellType::kWedge || t == CellType::kPyramid) return true;
-  return false;
-}
-
 // The apex of the cap over quad q (nodes ordered with the normal out of the layers).
 Vec3 cap_apex(const std::array<Vec3, 4>& q, const std::array<std::int64_t, 4>& ids) {
   Vec3 centre{0, 0, 0}, normal{0, 0, 0};
@@ -70,11 +64,6 @@ FillEnvelope fill_envelope(const TriSurface& envelope, const std::vector<std::in
   std::map<std::int64_t, int> index_of;
   for (std::int64_t id : envelope_point_ids)
     if (index_of.emplace(id, static_cast<int>(out.point_ids.size())).second) out.point_ids.push_back(id);
-  const bool shared = out.point_ids.size() != envelope_point_ids.size();
-  if (!shared && !has_quads(*layers)) {
-    out.surface = envelope;
-    return out;
-  }
   std::map<Key, int> triangle_of;
   std::vector<Triangle> tris;
   for (const Triangle& t : envelope.triangles) {

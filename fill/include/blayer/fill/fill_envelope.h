@@ -21,8 +21,8 @@
 // Apex: the quad's centroid moved along its outward (Newell) normal by half its
 // shortest edge, halved until the pyramid passes the exact validity test (at most four
 // times); a quad for which none passes throws std::runtime_error naming its nodes.
-// Cost: O(#cells) for the layer mesh's faces (io/mesh_faces.h), only when the envelope
-// has a point shared by two columns or the mesh has quad faces.
+// Cost: O(#cells) for the layer mesh's faces (io/mesh_faces.h). (Every layer mesh has
+// quad faces, its wedges' sides, so no cheaper test tells a fanned envelope apart.)
 #pragma once
 
 #include <cstdint>
