@@ -149,12 +149,37 @@ std::vector<int> fan_points_failing_straight_layers(const TriSurface& wall, cons
   return out;
 }
 
-// One marching run on a column layout (fan_layout.h). When fan points fail on straight
-// columns before marching (fan_points_failing_straight_layers), returns at once with
-// them in *fan_failures and no mesh.
+// Fan points none of whose columns grew a layer because a cell, a collision or the
+// visibility stopped them: they fall back to one column in the next attempt. Known
+// once layer 0 is committed (a column that grew no layer then never will).
+std::vector<int> failed_fan_points(const ColumnLayout& layout, const std::vector<int>& layers,
+                                   const std::vector<StopReason>& reason) {
+  std::vector<int> failed;
+  for (int c = 0; c < layout.n_columns(); ++c) {
+    if (!layout.in_fan[c] || layers[c] > 0) continue;
+    const StopReason r = reason[c];
+    if (r == StopReason::kQuality || r == StopReason::kCollision || r == StopReason::kVisibility)
+      failed.push_back(layout.wall_point[c]);
+  }
+  std::sort(failed.begin(), failed.end());
+  failed.erase(std::unique(failed.begin(), failed.end()), failed.end());
+  return failed;
+}
+
+// Fan points that fall back to one column, found by a marching run that then stops
+// without a mesh: before marching, by the straight-layer precheck; after layer 0, those
+// of failed_fan_points (only when asked to stop there, i.e. another attempt follows).
+struct FanFailures {
+  std::vector<int> precheck, first_layer;
+};
+
+// One marching run on a column layout (fan_layout.h). Returns without a mesh when fan
+// points fail (*fan_failures): on straight columns before marching, or, with
+// stop_at_failed_fans, in layer 0.
 ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
                       const WallTopology& topo, const ExtrusionParams& params,
-                      const std::function<void(int, int)>& progress, std::vector<int>* fan_failures) {
+                      const std::function<void(int, int)>& progress, bool stop_at_failed_fans,
+                      FanFailures* fan_failures) {
   const Stopwatch total;
   ExtrusionResult res;
   ExtrusionReport& rep = res.report;
@@ -170,8 +195,8 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   FrontChecker checker(wall, layout, topo, params);
   ColumnPlan plan = plan_column_heights(wall, wall_topo, topo, rep.growth, params, dirs, checker.wall_rays());
   if (layout.has_fans()) {
-    *fan_failures = fan_points_failing_straight_layers(wall, layout, planes, dirs, plan, params);
-    if (!fan_failures->empty()) return res;
+    fan_failures->precheck = fan_points_failing_straight_layers(wall, layout, planes, dirs, plan, params);
+    if (!fan_failures->precheck.empty()) return res;
   }
   ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
   LayerAssembler assembler(wall, layout, dirs);
@@ -219,6 +244,10 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
     assembler.commit_layer(k, grows, next, dirs, &columns);
     rep.t_assembly += phase.seconds();
     if (progress) progress(k + 1, rep.growth.layers);
+    if (k == 0 && stop_at_failed_fans) {
+      fan_failures->first_layer = failed_fan_points(layout, columns.layers, columns.reason);
+      if (!fan_failures->first_layer.empty()) return res;
+    }
   }
   // The marching state is no longer needed; freeing it here keeps it out of the peak
   // memory, which is reached while the output arrays are filled.
@@ -254,21 +283,6 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   return res;
 }
 
-// Fan points none of whose columns grew a layer because a cell, a collision or the
-// visibility stopped them: they fall back to one column in the next attempt.
-std::vector<int> failed_fan_points(const ColumnLayout& layout, const ExtrusionResult& res) {
-  std::vector<int> failed;
-  for (int c = 0; c < layout.n_columns(); ++c) {
-    if (!layout.in_fan[c] || res.column_layers[c] > 0) continue;
-    const StopReason r = res.stop_reason[c];
-    if (r == StopReason::kQuality || r == StopReason::kCollision || r == StopReason::kVisibility)
-      failed.push_back(layout.wall_point[c]);
-  }
-  std::sort(failed.begin(), failed.end());
-  failed.erase(std::unique(failed.begin(), failed.end()), failed.end());
-  return failed;
-}
-
 }  // namespace
 
 ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& params,
@@ -278,8 +292,8 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   check_wall(wall);
   const WallTopology wall_topo = build_wall_topology(wall, params.symmetry);
   if (!(params.fan_angle_deg > 0.0)) {
-    std::vector<int> none;
-    return march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, &none);
+    FanFailures none;
+    return march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &none);
   }
   // Fans; a fan point whose fan cannot grow its first layer falls back to one column,
   // and the extrusion is marched again (each attempt removes at least one fan point).
@@ -291,9 +305,11 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     const Stopwatch layout_time;
     const ColumnLayout layout = build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded);
     t_layout += layout_time.seconds();
-    std::vector<int> precheck;
-    ExtrusionResult res =
-        march(wall, wall_topo, layout, build_column_topology(layout, params.symmetry), params, progress, &precheck);
+    FanFailures failures;
+    const bool last_attempt = attempt + 1 >= kMaxFanAttempts;
+    ExtrusionResult res = march(wall, wall_topo, layout, build_column_topology(layout, params.symmetry), params,
+                                progress, !last_attempt, &failures);
+    std::vector<int>& precheck = failures.precheck;
     if (!precheck.empty()) {
       // Each round rebuilds the layout and its directions: when most fans fail, or
       // after a few rounds, every remaining fan point falls back at once.
@@ -309,8 +325,11 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
       --attempt;  // no marching happened
       continue;
     }
-    const std::vector<int> failed = failed_fan_points(layout, res);
-    if (failed.empty() || attempt + 1 >= kMaxFanAttempts) {
+    // Not last: march stopped after layer 0 if fan points failed there. Last: it
+    // marched to the end, and the fan points that failed are reported.
+    const std::vector<int> failed =
+        last_attempt ? failed_fan_points(layout, res.column_layers, res.stop_reason) : failures.first_layer;
+    if (failed.empty() || last_attempt) {
       FanSummary& f = res.report.fans;
       f.points = layout.n_fan_points;
       f.columns = 0;
