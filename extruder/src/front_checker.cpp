@@ -237,12 +237,6 @@ ProximityRays FrontChecker::front_rays() const {
   return r;
 }
 
-namespace {
-
-bool names_a_point_twice(const IndexedTriangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
-
-}  // namespace
-
 void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) {
   k_ = k;
   cur_points_ = &top;

@@ -106,8 +106,7 @@ bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, co
 }
 
 bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangle& s, const IndexedTriangle& t) {
-  auto repeats = [](const IndexedTriangle& x) { return x[0] == x[1] || x[1] == x[2] || x[2] == x[0]; };
-  if (repeats(s) || repeats(t)) return false;  // else more than 3 shared pairs could be counted
+  if (names_a_point_twice(s) || names_a_point_twice(t)) return false;  // else more than 3 shared pairs could be counted
   int shared_s[3], shared_t[3], n_shared = 0;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
