@@ -16,12 +16,16 @@ namespace blayer {
 
 namespace {
 
+// The column edges of the layer cells, wall end first where a cell stands on the wall
+// (VTK node orders: a wedge's bottom 0 1 2 under 3 4 5; a closure pyramid's base edges
+// 0-1 and 3-2 run up the two columns that grew).
+constexpr int kWedgeEdges[3][2] = {{0, 3}, {1, 4}, {2, 5}};
+constexpr int kHexEdges[4][2] = {{0, 4}, {1, 5}, {2, 6}, {3, 7}};
+constexpr int kPyramidEdges[2][2] = {{0, 1}, {3, 2}};
+
 // Column edges as an adjacency list: for each mesh point the points it shares a column
 // edge with, each neighbour once.
 std::vector<std::vector<std::int64_t>> column_neighbours(const VolumeMesh& mesh) {
-  static constexpr int kWedgeEdges[3][2] = {{0, 3}, {1, 4}, {2, 5}};
-  static constexpr int kHexEdges[4][2] = {{0, 4}, {1, 5}, {2, 6}, {3, 7}};
-  static constexpr int kPyramidEdges[2][2] = {{0, 1}, {2, 3}};
   std::vector<std::vector<std::int64_t>> nb(mesh.points.size());
   auto link = [&](std::int64_t a, std::int64_t b) {
     if (a == b) return;
@@ -109,8 +113,6 @@ std::unordered_map<std::int64_t, std::vector<int>> first_point_triangles(const V
     triangle_of[k] = static_cast<int>(t);
   }
   std::unordered_map<std::int64_t, std::vector<int>> out;
-  static constexpr int kWedgeEdges[3][2] = {{0, 3}, {1, 4}, {2, 5}};
-  static constexpr int kPyramidEdges[2][2] = {{0, 1}, {3, 2}};
   for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
     const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
     const bool wedge = mesh.cell_types[c] == CellType::kWedge;
@@ -200,7 +202,6 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
   int within1_planes = 0, within1_distance = 0, within10_planes = 0, within10_distance = 0;
   int reach_planes = 0, reach_distance = 0;
   const double h1 = targets.first_height, total = targets.total_thickness;
-  std::vector<int> point_layers(n_wall, -1);  // fewest layers of the point's columns
   for (std::size_t w = 0; w < n_wall; ++w) {
     if (incident[w].empty()) {
       f.columns[w].layers = -1;
@@ -218,14 +219,14 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
             follow_column(static_cast<std::int64_t>(w), firsts[i], mesh, nb, n_wall, &branching);
         f.n_branching += branching ? 1 : 0;
         // The planes: all the point's triangles, or with a fan the column's own.
-        std::vector<int> planes = incident[w];
+        const std::vector<int>* planes = &incident[w];
         if (firsts.size() > 1) {
           const auto it = own_triangles.find(firsts[i]);
-          if (it != own_triangles.end()) planes = it->second;
+          if (it != own_triangles.end()) planes = &it->second;
         }
         auto height_planes = [&](const Vec3& p) {
           double h = std::numeric_limits<double>::infinity();
-          for (int t : planes) h = std::min(h, dot(p - wall.points[wall.triangles[t][0]], unit_normal[t]));
+          for (int t : *planes) h = std::min(h, dot(p - wall.points[wall.triangles[t][0]], unit_normal[t]));
           return h;
         };
         c.layers = static_cast<int>(path.size());
@@ -252,10 +253,7 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
       top_distance.push_back(c.top_distance / total);
       reach_planes += top_planes.back() >= 0.9;
       reach_distance += top_distance.back() >= 0.9;
-      if (i == 0 || c.layers < point_layers[w]) {
-        point_layers[w] = c.layers;
-        f.columns[w] = c;
-      }
+      if (i == 0 || c.layers < f.columns[w].layers) f.columns[w] = c;  // the point's fewest layers
     }
   }
   f.first_over_h1_planes = describe_distribution(first_planes);
@@ -274,7 +272,7 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
     const double a = 0.5 * norm(triangle_area_vector(wall, t));
     area += a;
     bool complete = true;
-    for (int v : t) complete &= point_layers[v] >= targets.layers;
+    for (int v : t) complete &= f.columns[v].layers >= targets.layers;
     if (complete) covered += a;
   }
   f.area_coverage = area > 0.0 ? covered / area : 0.0;
