@@ -77,10 +77,8 @@ TriSurface l_block() {
 }
 
 void expect_closed_and_oriented(const TriSurface& front) {
-  const EdgeTopology e = build_edge_topology(front);
-  int bad = 0;
-  for (const SurfaceEdge& edge : e.edges) bad += edge.kind != EdgeKind::kManifold;
-  EXPECT_EQ(bad, 0) << "front edges that are not shared by two oppositely wound triangles";
+  EXPECT_TRUE(build_edge_topology(front).closed_manifold_oriented())
+      << "front edges that are not shared by two oppositely wound triangles";
 }
 
 TEST(FanLayout, BoxEdgesGetTwoFaceColumnsAndCornersThreeWithExactNormals) {
@@ -536,9 +534,7 @@ TEST(FanExtrusion, RidgeEndsCloseWithSplitCellsThatConform) {
   // 5 slices are 2 tets each, and each end's 4 wall triangles a pyramid and a tet.
   ASSERT_FALSE(r.report.columns_per_layer.empty());
   EXPECT_EQ(r.report.columns_per_layer[0], 12 + 3 * 6);
-  const DataArray* layer = nullptr;
-  for (const DataArray& a : r.mesh.cell_data)
-    if (a.name == "layer") layer = &a;
+  const DataArray* layer = r.mesh.find_cell_array("layer");
   ASSERT_NE(layer, nullptr);
   std::map<CellType, int> wall_layer;
   for (std::size_t c = 0; c < r.mesh.n_cells(); ++c)
