@@ -31,9 +31,11 @@ cmake --build "$build" -j "$jobs"
 # whole test process is checked for leaks at exit. handle_segv=0: a segfault kills the
 # process with SIGSEGV as in a normal build (the fill's crash-isolation tests kill a
 # child that way on purpose and check the signal; ASan's handler would abort instead).
-# allocator_may_return_null: a request too large to satisfy throws std::bad_alloc as
-# in the normal build (a corrupt .vtp header's claim is refused that way; under ASan
-# the reader runs in the test's own process, io/src/parse_in_child.cpp).
+# allocator_may_return_null: malloc returns null for a request too large to satisfy
+# instead of aborting. ASan's operator new still reports such a request, so the .vtp
+# files whose headers claim more memory than exists run in the normal build only
+# (tests/io/fuzz_regression_test.cpp); under ASan the reader runs in the test's own
+# process (io/src/parse_in_child.cpp).
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=1:handle_segv=0:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$root/scripts/ubsan-suppressions.txt"
 # Left out under the sanitizers (BLAYER_SANITIZE_ALL=1 runs them too):

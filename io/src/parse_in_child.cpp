@@ -138,9 +138,11 @@ PolygonSoup parse_in_child(const std::function<PolygonSoup()>& parse, const std:
 // (an idle TBB worker finishing a task) holds its lock leaves the child waiting on that
 // lock for ever, which the sanitized suite met in a test that writes a .vtp with TBB
 // and reads it back. Under AddressSanitizer the reader runs in this process instead
-// (its own exceptions still become InputErrors; the sanitized suite sets
-// allocator_may_return_null so a corrupt header's huge request throws bad_alloc); a
-// crash inside VTK then ends the process, which is what a sanitizer run wants to see.
+// (its own exceptions still become InputErrors; ASan's operator new reports a corrupt
+// header's huge request rather than throwing, so the sanitized suite leaves those files
+// out); a crash inside VTK then ends the process, which is what a sanitizer run wants
+// to see. clang 14 does not define __SANITIZE_ADDRESS__, so a clang ASan build (the
+// fuzzers) still forks here.
 PolygonSoup parse_in_child(const std::function<PolygonSoup()>& parse, const std::string& name) {
   try {
     return parse();
