@@ -117,6 +117,34 @@ def main():
         '<DataArray type="Int32" Name="offsets" format="ascii">3 6 9 12</DataArray></Polys>\n'
         '</Piece></PolyData></VTKFile>\n')
 
+    # The appended layouts (raw and base64, 32-bit headers) through VTK's own writer,
+    # when Python's VTK is there (scripts/install-deps.sh --extras).
+    try:
+        import vtk
+    except ImportError:
+        vtk = None
+    if vtk is not None:
+        points = vtk.vtkPoints()
+        for p in TETRA_P:
+            points.InsertNextPoint(*p)
+        polys = vtk.vtkCellArray()
+        for t in TETRA_T:
+            polys.InsertNextCell(3, t)
+        poly = vtk.vtkPolyData()
+        poly.SetPoints(points)
+        poly.SetPolys(polys)
+        for name, encode in (("tetra_appended_raw.vtp", False), ("tetra_appended_base64.vtp", True)):
+            writer = vtk.vtkXMLPolyDataWriter()
+            writer.SetInputData(poly)
+            writer.WriteToOutputStringOn()
+            writer.SetDataModeToAppended()
+            writer.SetEncodeAppendedData(encode)
+            writer.SetHeaderTypeToUInt32()
+            writer.SetCompressorTypeToZLib()
+            writer.Write()
+            put("read_vtp", name, writer.GetOutputStdString() if hasattr(writer, "GetOutputStdString")
+                else writer.GetOutputString())
+
     rng = random.Random(20261201)
     for target in ("prepare_surface", "normals_fan", "extrude_check"):
         for i in range(4):

@@ -24,9 +24,10 @@ if ((${#targets[@]} == 0)); then
 fi
 
 # allocator_may_return_null=1: malloc returns null for an allocation too large to
-# satisfy, instead of ASan aborting. ASan's operator new still reports such a request
-# (clang 14), so a VTK request for what a corrupt .vtp claims is a finding in the
-# reader's child process (the release build refuses those files: io/fuzz_regressions).
+# satisfy, instead of ASan aborting; VTK sizes arrays from a .vtp's element counts with
+# malloc and reports a null as an error. (ASan's operator new still reports such a
+# request: the VTP reader refuses the headers that would make VTK ask, see
+# io/src/vtp_header_claims.h.)
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:symbolize=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export ASAN_SYMBOLIZER_PATH="$(command -v llvm-symbolizer-14 || true)"
@@ -38,10 +39,10 @@ for t in "${targets[@]}"; do
   log="$build/logs/$t.log"
   status=0
   before="$(find "$build/findings/$t" -type f | wc -l)"
-  # VTK's XML reader allocates what a (corrupt) count or compressed-block header claims
-  # before it finds the data missing; a large request that the system grants lazily is
-  # harmless (the reader then fails and blayer refuses the file), so for the VTP target
-  # only resident memory is limited, not the size of one allocation.
+  # VTK sizes a .vtp's arrays from its (possibly corrupt) element counts with malloc;
+  # a large request that the system grants lazily is harmless (the reader then finds
+  # the data missing and blayer refuses the file), so for the VTP target only resident
+  # memory is limited, not the size of one allocation.
   malloc_limit=()
   [[ "$t" == read_vtp ]] && malloc_limit=(-malloc_limit_mb=1048576)
   "$build/${t}_fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 "${malloc_limit[@]}" -print_final_stats=1 \
@@ -49,7 +50,8 @@ for t in "${targets[@]}"; do
   execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
   rate="$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)"
   result="ok"
-  # A finding in a child process (the VTP reader forks one) does not stop the parent:
+  # A finding in a child process (a reader or TetGen forked outside AddressSanitizer
+  # builds, or any helper process) does not stop the parent:
   # count what was saved during the run as well as the exit status.
   new_files=$(( $(find "$build/findings/$t" -type f | wc -l) - before ))
   if ((status == 0 && new_files > 0)); then

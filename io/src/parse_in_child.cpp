@@ -8,11 +8,10 @@
 #include <cstdint>
 #include <cstring>
 
+#include "blayer/core/address_sanitizer.h"
 #include "blayer/core/errors.h"
 
 namespace blayer::detail {
-
-#if !defined(__SANITIZE_ADDRESS__)
 
 namespace {
 
@@ -100,9 +99,7 @@ std::string read_all(int fd) {
   return bytes;
 }
 
-}  // namespace
-
-PolygonSoup parse_in_child(const std::function<PolygonSoup()>& parse, const std::string& name) {
+PolygonSoup parse_forked(const std::function<PolygonSoup()>& parse, const std::string& name) {
   int fds[2];
   if (::pipe(fds) != 0) throw IoError(name + ": cannot create a pipe for the reader process");
   const pid_t pid = ::fork();
@@ -132,18 +129,15 @@ PolygonSoup parse_in_child(const std::function<PolygonSoup()>& parse, const std:
   return soup;
 }
 
-#else
-
 // AddressSanitizer's allocator (GCC 12) is not fork-safe: a fork while another thread
 // (an idle TBB worker finishing a task) holds its lock leaves the child waiting on that
 // lock for ever, which the sanitized suite met in a test that writes a .vtp with TBB
 // and reads it back. Under AddressSanitizer the reader runs in this process instead
-// (its own exceptions still become InputErrors; ASan's operator new reports a corrupt
-// header's huge request rather than throwing, so the sanitized suite leaves those files
-// out); a crash inside VTK then ends the process, which is what a sanitizer run wants
-// to see. clang 14 does not define __SANITIZE_ADDRESS__, so a clang ASan build (the
-// fuzzers) still forks here.
-PolygonSoup parse_in_child(const std::function<PolygonSoup()>& parse, const std::string& name) {
+// (its own exceptions still become InputErrors); a crash inside VTK then ends the
+// process, which is what a sanitizer run wants to see. The .vtp reader refuses a header
+// that claims more than the file can hold before VTK allocates it (vtp_header_claims.h),
+// so ASan's operator new, which reports a huge request instead of throwing, is not met.
+PolygonSoup parse_here(const std::function<PolygonSoup()>& parse, const std::string& name) {
   try {
     return parse();
   } catch (const InputError&) {
@@ -152,6 +146,11 @@ PolygonSoup parse_in_child(const std::function<PolygonSoup()>& parse, const std:
     throw InputError(name + ": cannot parse the file (" + e.what() + ")");
   }
 }
-#endif
+
+}  // namespace
+
+PolygonSoup parse_in_child(const std::function<PolygonSoup()>& parse, const std::string& name) {
+  return kAddressSanitizer ? parse_here(parse, name) : parse_forked(parse, name);
+}
 
 }  // namespace blayer::detail

@@ -14,6 +14,7 @@
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkXMLDataParser.h>
 #include <vtkXMLPolyDataReader.h>
 
 #include <sys/resource.h>
@@ -24,8 +25,10 @@
 #include <new>
 #include <string>
 
+#include "blayer/core/address_sanitizer.h"
 #include "parse_in_child.h"
 #include "surface_parsers.h"
+#include "vtp_header_claims.h"
 
 namespace blayer::detail {
 
@@ -84,8 +87,13 @@ class CapturedVtkErrors {
   vtkNew<CapturingOutputWindow> window_;
 };
 
-// Current virtual size (first field of /proc/self/statm, in pages) plus the allowance.
-void limit_address_space_now(std::size_t file_bytes) {
+// The reader's process may map at most what it holds now (the first field of
+// /proc/self/statm, in pages) plus what vtp_decoded_bytes_allowed grants: a corrupt
+// count that claims gigabytes then fails at once with bad_alloc instead of making the
+// system zero gigabytes of pages. Not under AddressSanitizer, whose shadow memory
+// reserves terabytes of address space.
+void limit_address_space(std::size_t file_bytes) {
+  if (kAddressSanitizer) return;
   unsigned long pages = 0;
   if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
     if (std::fscanf(f, "%lu", &pages) != 1) pages = 0;
@@ -93,7 +101,7 @@ void limit_address_space_now(std::size_t file_bytes) {
   }
   if (pages == 0) return;
   const double now = static_cast<double>(pages) * static_cast<double>(::sysconf(_SC_PAGESIZE));
-  const double allowed = now + 64.0 * static_cast<double>(file_bytes) + 2.0 * 1024 * 1024 * 1024;
+  const double allowed = now + vtp_decoded_bytes_allowed(file_bytes);
   rlimit r{};
   if (::getrlimit(RLIMIT_AS, &r) != 0) return;
   if (r.rlim_cur != RLIM_INFINITY && static_cast<double>(r.rlim_cur) <= allowed) return;
@@ -107,6 +115,15 @@ PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
   reader->ReadFromInputStringOn();
   reader->SetInputString(std::string(bytes));
   try {
+    // The XML first (no data is read yet), then what its binary headers claim, then
+    // the data.
+    reader->UpdateInformation();
+    if (reader->GetErrorCode() != 0 || !messages.first().empty())
+      fail_at(name, 0, "cannot parse the .vtp file" + (messages.first().empty() ? "" : " (VTK: " + messages.first() + ")"));
+    if (vtkXMLDataParser* parser = reader->GetXMLParser()) {
+      const std::string claim = excessive_header_claim(*parser, bytes);
+      if (!claim.empty()) fail_at(name, 0, "cannot parse the .vtp file: " + claim + " (a corrupt header)");
+    }
     reader->Update();
   } catch (const std::bad_alloc&) {
     // VTK allocates what the file's counts and compressed-block headers claim; a corrupt
@@ -141,26 +158,6 @@ PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
     soup.faces.push_back(std::move(face));
   }
   return soup;
-}
-
-// The reader's process may map at most what it holds now plus 64 times the file's size
-// plus 2 GiB: far more than any real surface needs (its arrays compress by a few times,
-// not by 64), while a corrupt block header that claims gigabytes (a count of 10^9
-// blocks: an 8 GB table of block sizes) fails at once with bad_alloc instead of making
-// the system zero gigabytes of pages. Not under AddressSanitizer, whose shadow memory
-// reserves terabytes of address space.
-void limit_address_space(std::size_t file_bytes) {
-#if defined(__SANITIZE_ADDRESS__)
-  (void)file_bytes;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  (void)file_bytes;
-#else
-  limit_address_space_now(file_bytes);
-#endif
-#else
-  limit_address_space_now(file_bytes);
-#endif
 }
 
 }  // namespace

@@ -1,0 +1,203 @@
+#include "vtp_header_claims.h"
+
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
+
+#include <cstdint>
+#include <cstring>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+
+namespace blayer::detail {
+
+double vtp_decoded_bytes_allowed(std::size_t file_bytes) {
+  return 64.0 * static_cast<double>(file_bytes) + 2.0 * 1024 * 1024 * 1024;
+}
+
+namespace {
+
+int base64_value(char c) {
+  if (c >= 'A' && c <= 'Z') return c - 'A';
+  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+  if (c >= '0' && c <= '9') return c - '0' + 52;
+  if (c == '+') return 62;
+  if (c == '/') return 63;
+  return -1;
+}
+
+// Consecutive bytes of one array's data as VTK reads them: raw from a position of the
+// file, or decoded from base64 four characters at a time ('=' pads the last group of
+// a separately encoded part, as VTK writes the header and the blocks).
+class DataBytes {
+ public:
+  DataBytes(std::string_view file, std::size_t pos, bool base64) : file_(file), pos_(pos), base64_(base64) {}
+
+  // The next n bytes, or nullopt when the file ends first or a character is not base64.
+  std::optional<std::string> read(std::size_t n) {
+    std::string out;
+    if (!base64_) {
+      if (pos_ > file_.size() || file_.size() - pos_ < n) return std::nullopt;
+      out.assign(file_.substr(pos_, n));
+      pos_ += n;
+      return out;
+    }
+    while (out.size() < n) {
+      if (pending_.empty() && !decode_group()) return std::nullopt;
+      const std::size_t take = std::min(n - out.size(), pending_.size());
+      out.append(pending_, 0, take);
+      pending_.erase(0, take);
+    }
+    return out;
+  }
+
+  // An upper bound on the bytes left after the current position.
+  double bytes_left() const {
+    if (!base64_) return pos_ >= file_.size() ? 0.0 : static_cast<double>(file_.size() - pos_);
+    std::size_t chars = 0;
+    for (std::size_t i = pos_; i < file_.size() && (base64_value(file_[i]) >= 0 || file_[i] == '='); ++i) ++chars;
+    return static_cast<double>(pending_.size()) + 0.75 * static_cast<double>(chars);
+  }
+
+ private:
+  bool decode_group() {
+    if (pos_ > file_.size() || file_.size() - pos_ < 4) return false;
+    int v[4];
+    for (int k = 0; k < 4; ++k) v[k] = base64_value(file_[pos_ + k]);
+    if (v[0] < 0 || v[1] < 0) return false;
+    const bool pad2 = file_[pos_ + 2] == '=', pad3 = file_[pos_ + 3] == '=';
+    if ((v[2] < 0 && !pad2) || (v[3] < 0 && !pad3) || (pad2 && !pad3)) return false;
+    pending_.push_back(static_cast<char>((v[0] << 2) | (v[1] >> 4)));
+    if (!pad2) pending_.push_back(static_cast<char>(((v[1] & 15) << 4) | (v[2] >> 2)));
+    if (!pad3) pending_.push_back(static_cast<char>(((v[2] & 3) << 6) | v[3]));
+    pos_ += 4;
+    return true;
+  }
+
+  std::string_view file_;
+  std::size_t pos_;
+  bool base64_;
+  std::string pending_;
+};
+
+// How the file's header words are stored (the VTKFile element's attributes).
+struct HeaderFormat {
+  bool compressed = false;
+  std::size_t word_bytes = 4;
+  bool big_endian = false;
+};
+
+std::uint64_t word_at(const std::string& bytes, std::size_t i, const HeaderFormat& f) {
+  std::uint64_t v = 0;
+  for (std::size_t b = 0; b < f.word_bytes; ++b) {
+    const std::size_t at = i * f.word_bytes + (f.big_endian ? b : f.word_bytes - 1 - b);
+    v = (v << 8) | static_cast<unsigned char>(bytes[at]);
+  }
+  return v;
+}
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+// Where VTK starts reading an inline array: after its start tag and the white space
+// that follows (vtkXMLDataParser::SeekInlineDataPosition, from the same byte index).
+std::size_t inline_data_position(vtkXMLDataElement& e, std::string_view file) {
+  std::size_t i = static_cast<std::size_t>(std::max<vtkTypeInt64>(e.GetXMLByteIndex(), 0));
+  while (i < file.size() && file[i] != '>') ++i;
+  if (i < file.size()) ++i;
+  while (i < file.size() && is_space(file[i])) ++i;
+  return i;
+}
+
+// A byte count as a whole number, however large the claim.
+std::string bytes_text(double bytes) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(0) << bytes;
+  return out.str();
+}
+
+std::string named(vtkXMLDataElement& e) {
+  const char* name = e.GetAttribute("Name");
+  return std::string("DataArray \"") + (name ? name : "") + "\"";
+}
+
+// The claim of one compressed array's header that the file cannot back, or "".
+std::string check_compressed_header(DataBytes data, const HeaderFormat& f, double block_allowed,
+                                    const std::string& array) {
+  const std::optional<std::string> head = data.read(3 * f.word_bytes);
+  if (!head) return "the compressed-data header of " + array + " is cut short or not base64";
+  const std::uint64_t blocks = word_at(*head, 0, f), block = word_at(*head, 1, f), last = word_at(*head, 2, f);
+  std::ostringstream why;
+  const double table = static_cast<double>(blocks) * static_cast<double>(f.word_bytes);
+  if (table > data.bytes_left()) {
+    why << "the compressed-data header of " << array << " claims " << blocks << " blocks, a table of "
+        << bytes_text(table) << " bytes, where the file holds " << bytes_text(data.bytes_left()) << " more bytes";
+    return why.str();
+  }
+  if (static_cast<double>(block) > block_allowed || static_cast<double>(last) > block_allowed) {
+    why << "the compressed-data header of " << array << " claims blocks of " << std::max(block, last)
+        << " bytes decompressed, more than " << bytes_text(block_allowed) << " (64 times the file's size plus 2 GiB)";
+    return why.str();
+  }
+  const std::optional<std::string> sizes = data.read(static_cast<std::size_t>(table));
+  if (!sizes) return "the compressed-data header of " + array + " is cut short or not base64";
+  double compressed = 0;
+  for (std::uint64_t i = 0; i < blocks; ++i) compressed += static_cast<double>(word_at(*sizes, i, f));
+  if (compressed > data.bytes_left()) {
+    why << "the compressed-data header of " << array << " claims " << bytes_text(compressed)
+        << " bytes of compressed blocks, where the file holds " << bytes_text(data.bytes_left()) << " more bytes";
+    return why.str();
+  }
+  return "";
+}
+
+struct Walk {
+  vtkXMLDataParser& parser;
+  std::string_view file;
+  HeaderFormat format;
+  bool appended_base64 = false;
+  double block_allowed = 0;
+
+  std::string element(vtkXMLDataElement& e) const {
+    const char* name = e.GetName();
+    if (name && (std::strcmp(name, "DataArray") == 0 || std::strcmp(name, "Array") == 0)) {
+      const char* how = e.GetAttribute("format");
+      if (how && std::strcmp(how, "binary") == 0)
+        return check_compressed_header(DataBytes(file, inline_data_position(e, file), true), format, block_allowed,
+                                       named(e));
+      vtkTypeInt64 offset = 0;
+      if (how && std::strcmp(how, "appended") == 0 && e.GetScalarAttribute("offset", offset) && offset >= 0) {
+        const vtkTypeInt64 at = parser.GetAppendedDataPosition() + offset;
+        if (parser.GetAppendedDataPosition() > 0 && at >= 0)
+          return check_compressed_header(DataBytes(file, static_cast<std::size_t>(at), appended_base64), format,
+                                         block_allowed, named(e));
+      }
+    }
+    for (int i = 0; i < e.GetNumberOfNestedElements(); ++i) {
+      std::string why = element(*e.GetNestedElement(i));
+      if (!why.empty()) return why;
+    }
+    return "";
+  }
+};
+
+}  // namespace
+
+std::string excessive_header_claim(vtkXMLDataParser& parser, std::string_view bytes) {
+  vtkXMLDataElement* root = parser.GetRootElement();
+  if (!root) return "";
+  Walk walk{parser, bytes, {}, false, vtp_decoded_bytes_allowed(bytes.size())};
+  const char* compressor = root->GetAttribute("compressor");
+  walk.format.compressed = compressor && *compressor;
+  if (!walk.format.compressed) return "";
+  const char* header_type = root->GetAttribute("header_type");
+  walk.format.word_bytes = header_type && std::strcmp(header_type, "UInt64") == 0 ? 8 : 4;
+  const char* order = root->GetAttribute("byte_order");
+  walk.format.big_endian = order && std::strcmp(order, "BigEndian") == 0;
+  if (vtkXMLDataElement* appended = root->FindNestedElementWithName("AppendedData")) {
+    const char* encoding = appended->GetAttribute("encoding");
+    walk.appended_base64 = encoding && std::strcmp(encoding, "base64") == 0;
+  }
+  return walk.element(*root);
+}
+
+}  // namespace blayer::detail

@@ -1,0 +1,35 @@
+// What a .vtp's binary-data headers claim, checked against what the file can hold,
+// before VTK allocates it.
+//
+// VTK's XML reader trusts the header in front of each compressed data array: the
+// number of blocks (it allocates a table of that many sizes), the size of a block
+// decompressed and each block's compressed size (it allocates a buffer of each). A
+// corrupt header claims exabytes. The release build survives that (the reader's child
+// process has a bounded address space and VTK's bad_alloc becomes an InputError), but
+// under AddressSanitizer operator new reports a huge request instead of throwing. This
+// check reads the headers through VTK's own parse of the XML (element positions,
+// appended-data position, header type, compressor) and refuses a claim the file cannot
+// back, naming the array, in every build.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+class vtkXMLDataParser;
+
+namespace blayer::detail {
+
+// The most bytes one block of a .vtp file may decompress to, and the address space
+// the reader's process may add: 64 times the file's size (real data compresses by a
+// few times, not 64) plus 2 GiB.
+double vtp_decoded_bytes_allowed(std::size_t file_bytes);
+
+// "" when every compressed-data header of the parsed file claims what the file can
+// hold; else what the first header that does not claims, naming its DataArray. A
+// header that cannot be decoded (not base64, or cut short) is reported too: VTK could
+// not read its array either. Uncompressed arrays are not checked: their header only
+// bounds a copy into an array VTK sized from the element counts.
+std::string excessive_header_claim(vtkXMLDataParser& parser, std::string_view bytes);
+
+}  // namespace blayer::detail
