@@ -27,7 +27,7 @@ fi
 # satisfy, instead of ASan aborting; VTK sizes arrays from a .vtp's element counts with
 # malloc and reports a null as an error. (ASan's operator new still reports such a
 # request: the VTP reader refuses the headers that would make VTK ask, see
-# io/src/vtp_header_claims.h.)
+# io/src/vtp_precheck.h.)
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:symbolize=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export ASAN_SYMBOLIZER_PATH="$(command -v llvm-symbolizer-14 || true)"
@@ -50,8 +50,8 @@ for t in "${targets[@]}"; do
   execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
   rate="$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)"
   result="ok"
-  # A finding in a child process (a reader or TetGen forked outside AddressSanitizer
-  # builds, or any helper process) does not stop the parent:
+  # A finding in a child process (any the code under test starts) does not stop the
+  # parent:
   # count what was saved during the run as well as the exit status.
   new_files=$(( $(find "$build/findings/$t" -type f | wc -l) - before ))
   if ((status == 0 && new_files > 0)); then

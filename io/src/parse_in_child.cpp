@@ -129,14 +129,14 @@ PolygonSoup parse_forked(const std::function<PolygonSoup()>& parse, const std::s
   return soup;
 }
 
-// AddressSanitizer's allocator (GCC 12) is not fork-safe: a fork while another thread
-// (an idle TBB worker finishing a task) holds its lock leaves the child waiting on that
-// lock for ever, which the sanitized suite met in a test that writes a .vtp with TBB
-// and reads it back. Under AddressSanitizer the reader runs in this process instead
-// (its own exceptions still become InputErrors); a crash inside VTK then ends the
-// process, which is what a sanitizer run wants to see. The .vtp reader refuses a header
-// that claims more than the file can hold before VTK allocates it (vtp_header_claims.h),
-// so ASan's operator new, which reports a huge request instead of throwing, is not met.
+// AddressSanitizer's allocator is not fork-safe: a fork while another thread (an idle
+// TBB worker finishing a task) holds its lock leaves the child waiting on that lock for
+// ever, which the sanitized suite met in a test that writes a .vtp with TBB and reads it
+// back. So under AddressSanitizer the reader runs in this process instead (its own
+// exceptions still become InputErrors; a crash or a leak inside VTK is then reported,
+// which is what a sanitizer run wants to see). The .vtp reader refuses what would make
+// VTK allocate a corrupt header's claim (vtp_precheck.h) before VTK reads the data, so
+// ASan's operator new, which reports a huge request instead of throwing, is not met.
 PolygonSoup parse_here(const std::function<PolygonSoup()>& parse, const std::string& name) {
   try {
     return parse();

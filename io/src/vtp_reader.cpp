@@ -28,7 +28,7 @@
 #include "blayer/core/address_sanitizer.h"
 #include "parse_in_child.h"
 #include "surface_parsers.h"
-#include "vtp_header_claims.h"
+#include "vtp_precheck.h"
 
 namespace blayer::detail {
 
@@ -115,14 +115,13 @@ PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
   reader->ReadFromInputStringOn();
   reader->SetInputString(std::string(bytes));
   try {
-    // The XML first (no data is read yet), then what its binary headers claim, then
-    // the data.
+    // The XML first (no data is read yet), then the checks on it, then the data.
     reader->UpdateInformation();
     if (reader->GetErrorCode() != 0 || !messages.first().empty())
       fail_at(name, 0, "cannot parse the .vtp file" + (messages.first().empty() ? "" : " (VTK: " + messages.first() + ")"));
     if (vtkXMLDataParser* parser = reader->GetXMLParser()) {
-      const std::string claim = excessive_header_claim(*parser, bytes);
-      if (!claim.empty()) fail_at(name, 0, "cannot parse the .vtp file: " + claim + " (a corrupt header)");
+      const std::string problem = vtp_precheck_problem(*parser, bytes);
+      if (!problem.empty()) fail_at(name, 0, "cannot parse the .vtp file: " + problem);
     }
     reader->Update();
   } catch (const std::bad_alloc&) {

@@ -1,5 +1,5 @@
-// What a .vtp's binary-data headers claim, checked against what the file can hold,
-// before VTK allocates it.
+// Checks of a .vtp on VTK's parse of its XML, before VTK reads the data: what the
+// binary-data headers claim against what the file can hold, and the points' layout.
 //
 // VTK's XML reader trusts the header in front of each compressed data array: the
 // number of blocks (it allocates a table of that many sizes), the size of a block
@@ -10,6 +10,9 @@
 // check reads the headers through VTK's own parse of the XML (element positions,
 // appended-data position, header type, compressor) and refuses a claim the file cannot
 // back, naming the array, in every build.
+//
+// A Points array whose component count is not 3 makes VTK 9.1 fail after it has taken
+// objects it never frees; refused here, it is named plainly and nothing leaks.
 #pragma once
 
 #include <cstddef>
@@ -25,11 +28,11 @@ namespace blayer::detail {
 // few times, not 64) plus 2 GiB.
 double vtp_decoded_bytes_allowed(std::size_t file_bytes);
 
-// "" when every compressed-data header of the parsed file claims what the file can
-// hold; else what the first header that does not claims, naming its DataArray. A
-// header that cannot be decoded (not base64, or cut short) is reported too: VTK could
-// not read its array either. Uncompressed arrays are not checked: their header only
-// bounds a copy into an array VTK sized from the element counts.
-std::string excessive_header_claim(vtkXMLDataParser& parser, std::string_view bytes);
+// "" when the points' arrays have 3 components and every compressed-data header of the
+// parsed file claims what the file can hold; else the first problem, naming its
+// DataArray. A header that cannot be decoded (not base64, or cut short) is reported
+// too: VTK could not read its array either. Uncompressed arrays' headers are not
+// checked: they only bound a copy into an array VTK sized from the element counts.
+std::string vtp_precheck_problem(vtkXMLDataParser& parser, std::string_view bytes);
 
 }  // namespace blayer::detail

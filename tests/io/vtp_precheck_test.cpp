@@ -1,8 +1,8 @@
 // A .vtp whose compressed-data header claims more than the file can hold is refused
 // before VTK allocates the claim, naming the array, in every layout VTK writes: inline
-// base64, appended raw and appended base64, with 32- and 64-bit header words. Under
-// AddressSanitizer these run in the test's own process, where VTK's allocation of such a
-// claim would be a sanitizer report, not an exception.
+// base64, appended raw and appended base64, with 32- and 64-bit header words (under
+// AddressSanitizer VTK's allocation of such a claim would be a sanitizer report, not an
+// exception); so is one whose points do not have 3 components.
 #include <gtest/gtest.h>
 #include <vtkCellArray.h>
 #include <vtkNew.h>
@@ -116,7 +116,7 @@ std::string read_error(const std::string& vtp) {
   return "";
 }
 
-TEST(VtpHeaderClaims, EveryLayoutVtkWritesIsReadBack) {
+TEST(VtpPrecheck, EveryLayoutVtkWritesIsReadBack) {
   for (const Layout& layout : kLayouts) {
     const PolygonSoup soup = parse_polygon_soup(tetra_vtp(layout), "vtp", "t.vtp");
     EXPECT_EQ(soup.points.size(), 4u) << layout.name;
@@ -124,7 +124,7 @@ TEST(VtpHeaderClaims, EveryLayoutVtkWritesIsReadBack) {
   }
 }
 
-TEST(VtpHeaderClaims, ABlockCountWhoseSizeTableTheFileCannotHoldIsRefusedNamingTheArray) {
+TEST(VtpPrecheck, ABlockCountWhoseSizeTableTheFileCannotHoldIsRefusedNamingTheArray) {
   for (const Layout& layout : kLayouts) {
     const std::string msg = read_error(with_header_word(tetra_vtp(layout), layout, 0, 1000000000));
     EXPECT_EQ(msg.rfind("t.vtp: cannot parse the .vtp file: the compressed-data header of DataArray \"Points\" claims "
@@ -135,7 +135,7 @@ TEST(VtpHeaderClaims, ABlockCountWhoseSizeTableTheFileCannotHoldIsRefusedNamingT
   }
 }
 
-TEST(VtpHeaderClaims, ABlockLargerThanTheAllowanceIsRefused) {
+TEST(VtpPrecheck, ABlockLargerThanTheAllowanceIsRefused) {
   for (const Layout& layout : kLayouts) {
     const std::uint64_t huge = layout.words_of_64 ? 4000000000000000000ull : 4000000000ull;
     for (int word : {1, 2}) {
@@ -146,7 +146,23 @@ TEST(VtpHeaderClaims, ABlockLargerThanTheAllowanceIsRefused) {
   }
 }
 
-TEST(VtpHeaderClaims, CompressedBlocksLongerThanTheRestOfTheFileAreRefused) {
+// VTK divides offsets by the block size, and takes the block of an offset past the
+// blocks' table when the last block is larger than the others.
+TEST(VtpPrecheck, AZeroBlockSizeOrALastBlockLargerThanTheOthersIsRefused) {
+  for (const Layout& layout : kLayouts) {
+    EXPECT_NE(read_error(with_header_word(tetra_vtp(layout), layout, 1, 0)).find("claims 1 blocks of 0 bytes"),
+              std::string::npos)
+        << layout.name;
+    // The tetrahedron's points fit one block of 32768 bytes (the size VTK writes): a
+    // last block of 32769 bytes is larger.
+    EXPECT_NE(read_error(with_header_word(tetra_vtp(layout), layout, 2, 32769))
+                  .find("claims a last block of 32769 bytes, larger than its blocks of 32768 bytes"),
+              std::string::npos)
+        << layout.name;
+  }
+}
+
+TEST(VtpPrecheck, CompressedBlocksLongerThanTheRestOfTheFileAreRefused) {
   for (const Layout& layout : kLayouts) {
     const std::string msg = read_error(with_header_word(tetra_vtp(layout), layout, 3, 1000000));
     EXPECT_NE(msg.find("claims 1000000 bytes of compressed blocks"), std::string::npos) << layout.name << ": " << msg;
@@ -155,11 +171,21 @@ TEST(VtpHeaderClaims, CompressedBlocksLongerThanTheRestOfTheFileAreRefused) {
 
 // The check reads the header where VTK does: rewriting a word with its own value
 // changes nothing, so the helper above patches the header, not some other bytes.
-TEST(VtpHeaderClaims, RewritingAHeaderWordWithItsOwnValueStillReads) {
+TEST(VtpPrecheck, RewritingAHeaderWordWithItsOwnValueStillReads) {
   for (const Layout& layout : kLayouts) {
     const std::string vtp = tetra_vtp(layout);
     EXPECT_EQ(read_error(with_header_word(vtp, layout, 0, 1)), "") << layout.name;
   }
+}
+
+// VTK 9.1 reads such points and fails after taking objects it never frees.
+TEST(VtpPrecheck, PointsWithoutThreeComponentsAreRefusedNamingTheCount) {
+  std::string vtp = tetra_vtp(kLayouts[2]);
+  const std::size_t at = vtp.find("NumberOfComponents=\"3\"", vtp.find("<Points>"));
+  ASSERT_NE(at, std::string::npos);
+  vtp[at + std::string("NumberOfComponents=\"").size()] = '2';
+  EXPECT_EQ(read_error(vtp),
+            "t.vtp: cannot parse the .vtp file: the points' DataArray \"Points\" has 2 components per point, not 3");
 }
 
 }  // namespace

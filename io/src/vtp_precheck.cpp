@@ -1,4 +1,4 @@
-#include "vtp_header_claims.h"
+#include "vtp_precheck.h"
 
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 namespace blayer::detail {
 
@@ -121,7 +122,7 @@ std::string named(vtkXMLDataElement& e) {
 }
 
 // The claim of one compressed array's header that the file cannot back, or "".
-std::string check_compressed_header(DataBytes data, const HeaderFormat& f, double block_allowed,
+std::string header_claim_problem(DataBytes data, const HeaderFormat& f, double block_allowed,
                                     const std::string& array) {
   const std::optional<std::string> head = data.read(3 * f.word_bytes);
   if (!head) return "the compressed-data header of " + array + " is cut short or not base64";
@@ -138,6 +139,18 @@ std::string check_compressed_header(DataBytes data, const HeaderFormat& f, doubl
         << " bytes decompressed, more than " << bytes_text(block_allowed) << " (64 times the file's size plus 2 GiB)";
     return why.str();
   }
+  // VTK divides by the block size, and finds the block of an offset as offset / size
+  // with the last block's size bounding the total: a zero size, or a last block larger
+  // than the others, makes it divide by zero or read past its table of blocks.
+  if (blocks > 0 && block == 0) {
+    why << "the compressed-data header of " << array << " claims " << blocks << " blocks of 0 bytes";
+    return why.str();
+  }
+  if (last > block) {
+    why << "the compressed-data header of " << array << " claims a last block of " << last
+        << " bytes, larger than its blocks of " << block << " bytes";
+    return why.str();
+  }
   const std::optional<std::string> sizes = data.read(static_cast<std::size_t>(table));
   if (!sizes) return "the compressed-data header of " + array + " is cut short or not base64";
   double compressed = 0;
@@ -150,6 +163,24 @@ std::string check_compressed_header(DataBytes data, const HeaderFormat& f, doubl
   return "";
 }
 
+// VTK's points have 3 components (NumberOfComponents defaults to 1).
+std::string check_points(vtkXMLDataElement& points) {
+  for (int i = 0; i < points.GetNumberOfNestedElements(); ++i) {
+    vtkXMLDataElement& a = *points.GetNestedElement(i);
+    int components = 1;
+    a.GetScalarAttribute("NumberOfComponents", components);
+    if (components != 3)
+      return "the points' " + named(a) + " has " + std::to_string(components) + " components per point, not 3";
+  }
+  return "";
+}
+
+std::string check_compressed_header(DataBytes data, const HeaderFormat& f, double block_allowed,
+                                    const std::string& array) {
+  const std::string why = header_claim_problem(std::move(data), f, block_allowed, array);
+  return why.empty() ? why : why + " (a corrupt header)";
+}
+
 struct Walk {
   vtkXMLDataParser& parser;
   std::string_view file;
@@ -159,7 +190,11 @@ struct Walk {
 
   std::string element(vtkXMLDataElement& e) const {
     const char* name = e.GetName();
-    if (name && (std::strcmp(name, "DataArray") == 0 || std::strcmp(name, "Array") == 0)) {
+    if (name && std::strcmp(name, "Points") == 0) {
+      std::string why = check_points(e);
+      if (!why.empty()) return why;
+    }
+    if (format.compressed && name && (std::strcmp(name, "DataArray") == 0 || std::strcmp(name, "Array") == 0)) {
       const char* how = e.GetAttribute("format");
       if (how && std::strcmp(how, "binary") == 0)
         return check_compressed_header(DataBytes(file, inline_data_position(e, file), true), format, block_allowed,
@@ -182,13 +217,12 @@ struct Walk {
 
 }  // namespace
 
-std::string excessive_header_claim(vtkXMLDataParser& parser, std::string_view bytes) {
+std::string vtp_precheck_problem(vtkXMLDataParser& parser, std::string_view bytes) {
   vtkXMLDataElement* root = parser.GetRootElement();
   if (!root) return "";
   Walk walk{parser, bytes, {}, false, vtp_decoded_bytes_allowed(bytes.size())};
   const char* compressor = root->GetAttribute("compressor");
   walk.format.compressed = compressor && *compressor;
-  if (!walk.format.compressed) return "";
   const char* header_type = root->GetAttribute("header_type");
   walk.format.word_bytes = header_type && std::strcmp(header_type, "UInt64") == 0 ? 8 : 4;
   const char* order = root->GetAttribute("byte_order");
