@@ -81,5 +81,12 @@ TEST(FuzzRegressions, VtpWhoseBlockCountClaimsABillionBlocksIsRefusedBeforeVtkAl
       << msg;
 }
 
+// Without header_type the header's words are 32-bit: this one claims blocks of 0 bytes,
+// by which VTK divides (a SIGFPE).
+TEST(FuzzRegressions, VtpWhoseHeaderClaimsBlocksOfZeroBytesIsRefusedBeforeVtkDividesByIt) {
+  const std::string f = "block_size_zero_divides_by_zero.vtp";
+  EXPECT_NE(outcome(kRegressions / "vtp" / f).find("DataArray \"normal\" claims 1 blocks of 0 bytes"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace blayer
