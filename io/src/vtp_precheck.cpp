@@ -195,16 +195,22 @@ struct Walk {
       if (!why.empty()) return why;
     }
     if (format.compressed && name && (std::strcmp(name, "DataArray") == 0 || std::strcmp(name, "Array") == 0)) {
+      // VTK reads an array with an offset from the appended data, whatever its format
+      // says, and one whose format is "binary" inline: check each way it may be read.
       const char* how = e.GetAttribute("format");
-      if (how && std::strcmp(how, "binary") == 0)
-        return check_compressed_header(DataBytes(file, inline_data_position(e, file), true), format, block_allowed,
-                                       named(e));
+      if (how && std::strcmp(how, "binary") == 0) {
+        std::string why = check_compressed_header(DataBytes(file, inline_data_position(e, file), true), format,
+                                                  block_allowed, named(e));
+        if (!why.empty()) return why;
+      }
       vtkTypeInt64 offset = 0;
-      if (how && std::strcmp(how, "appended") == 0 && e.GetScalarAttribute("offset", offset) && offset >= 0) {
+      if (e.GetScalarAttribute("offset", offset) && parser.GetAppendedDataPosition() > 0) {
         const vtkTypeInt64 at = parser.GetAppendedDataPosition() + offset;
-        if (parser.GetAppendedDataPosition() > 0 && at >= 0)
-          return check_compressed_header(DataBytes(file, static_cast<std::size_t>(at), appended_base64), format,
-                                         block_allowed, named(e));
+        if (offset < 0 || at < 0 || static_cast<std::size_t>(at) > file.size())
+          return named(e) + " has an offset of " + std::to_string(offset) + " outside the appended data";
+        std::string why = check_compressed_header(DataBytes(file, static_cast<std::size_t>(at), appended_base64), format,
+                                                  block_allowed, named(e));
+        if (!why.empty()) return why;
       }
     }
     for (int i = 0; i < e.GetNumberOfNestedElements(); ++i) {

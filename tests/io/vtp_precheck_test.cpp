@@ -169,6 +169,18 @@ TEST(VtpPrecheck, CompressedBlocksLongerThanTheRestOfTheFileAreRefused) {
   }
 }
 
+// VTK reads an array that has an offset from the appended data even when its format
+// is not "appended".
+TEST(VtpPrecheck, AnArrayWithAnOffsetIsCheckedInTheAppendedDataWhateverItsFormatSays) {
+  const Layout& raw = kLayouts[2];
+  std::string vtp = with_header_word(tetra_vtp(raw), raw, 0, 1000000000);
+  const std::size_t at = vtp.find("format=\"appended\"");
+  ASSERT_NE(at, std::string::npos);
+  vtp.replace(at, 17, "format=\"appen/ed\"");
+  EXPECT_NE(read_error(vtp).find("DataArray \"Points\" claims 1000000000 blocks"), std::string::npos)
+      << read_error(vtp);
+}
+
 // The check reads the header where VTK does: rewriting a word with its own value
 // changes nothing, so the helper above patches the header, not some other bytes.
 TEST(VtpPrecheck, RewritingAHeaderWordWithItsOwnValueStillReads) {
