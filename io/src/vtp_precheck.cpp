@@ -140,8 +140,13 @@ std::string header_claim_problem(DataBytes data, const HeaderFormat& f, double b
     return why.str();
   }
   // VTK divides by the block size, and finds the block of an offset as offset / size
-  // with the last block's size bounding the total: a zero size, or a last block larger
-  // than the others, makes it divide by zero or read past its table of blocks.
+  // with the last block's size bounding the total: a zero size, a last block larger
+  // than the others, or a last block without blocks makes it divide by zero or read
+  // past its table of blocks.
+  if (blocks == 0 && last != 0) {
+    why << "the compressed-data header of " << array << " claims 0 blocks but a last block of " << last << " bytes";
+    return why.str();
+  }
   if (blocks > 0 && block == 0) {
     why << "the compressed-data header of " << array << " claims " << blocks << " blocks of 0 bytes";
     return why.str();

@@ -146,10 +146,13 @@ TEST(VtpPrecheck, ABlockLargerThanTheAllowanceIsRefused) {
   }
 }
 
-// VTK divides offsets by the block size, and takes the block of an offset past the
-// blocks' table when the last block is larger than the others.
-TEST(VtpPrecheck, AZeroBlockSizeOrALastBlockLargerThanTheOthersIsRefused) {
+// VTK divides offsets by the block size, and takes a block past its table of blocks
+// when the last block is larger than the others or there are no others.
+TEST(VtpPrecheck, AZeroBlockSizeOrALastBlockLargerThanTheOthersOrAloneIsRefused) {
   for (const Layout& layout : kLayouts) {
+    EXPECT_NE(read_error(with_header_word(tetra_vtp(layout), layout, 0, 0)).find("claims 0 blocks but a last block of"),
+              std::string::npos)
+        << layout.name;
     EXPECT_NE(read_error(with_header_word(tetra_vtp(layout), layout, 1, 0)).find("claims 1 blocks of 0 bytes"),
               std::string::npos)
         << layout.name;
