@@ -13,14 +13,6 @@ namespace blayer {
 
 namespace {
 
-using Key = std::array<std::int64_t, 3>;
-
-Key sorted_key(std::int64_t a, std::int64_t b, std::int64_t c) {
-  Key k{a, b, c};
-  std::sort(k.begin(), k.end());
-  return k;
-}
-
 // The apex of the cap over quad q (nodes ordered with the normal out of the layers).
 Vec3 cap_apex(const std::array<Vec3, 4>& q, const std::array<std::int64_t, 4>& ids) {
   Vec3 centre{0, 0, 0}, normal{0, 0, 0};
@@ -64,12 +56,12 @@ FillEnvelope fill_envelope(const TriSurface& envelope, const std::vector<std::in
   std::map<std::int64_t, int> index_of;
   for (std::int64_t id : envelope_point_ids)
     if (index_of.emplace(id, static_cast<int>(out.point_ids.size())).second) out.point_ids.push_back(id);
-  std::map<Key, int> triangle_of;
+  std::map<TriangleKey, int> triangle_of;
   std::vector<Triangle> tris;
   for (const Triangle& t : envelope.triangles) {
     const std::int64_t a = envelope_point_ids[t[0]], b = envelope_point_ids[t[1]], c = envelope_point_ids[t[2]];
     if (a == b || b == c || c == a) continue;
-    triangle_of.emplace(sorted_key(a, b, c), static_cast<int>(tris.size()));
+    triangle_of.emplace(sorted_triangle(a, b, c), static_cast<int>(tris.size()));
     tris.push_back({index_of[a], index_of[b], index_of[c]});
   }
   // Quad boundary faces of the layer mesh whose halves (either diagonal) are envelope
@@ -84,9 +76,9 @@ FillEnvelope fill_envelope(const TriSurface& envelope, const std::vector<std::in
     const std::array<std::int64_t, 4>& q = faces.nodes[f];
     int halves[2] = {-1, -1};
     for (int diagonal = 0; diagonal < 2 && halves[1] < 0; ++diagonal) {
-      const int i = diagonal;  // halves (q_i, q_i+1, q_i+2) and (q_i+2, q_i+3, q_i)
-      auto a = triangle_of.find(sorted_key(q[i], q[i + 1], q[i + 2]));
-      auto b = triangle_of.find(sorted_key(q[i + 2], q[(i + 3) % 4], q[i]));
+      const std::array<TriangleKey, 2> keys = quad_halves(q, diagonal);
+      auto a = triangle_of.find(keys[0]);
+      auto b = triangle_of.find(keys[1]);
       if (a != triangle_of.end() && b != triangle_of.end()) {
         halves[0] = a->second;
         halves[1] = b->second;

@@ -14,13 +14,6 @@ namespace blayer {
 
 namespace {
 
-using TriangleKey = std::array<std::int64_t, 3>;
-
-TriangleKey sorted_key(std::array<std::int64_t, 3> t) {
-  std::sort(t.begin(), t.end());
-  return t;
-}
-
 // Keeps the points cells use, in their order, and renumbers the connectivity.
 VolumeMesh used_points_only(const VolumeMesh& mesh, std::vector<std::int64_t>* point_of_input) {
   point_of_input->assign(mesh.points.size(), -1);
@@ -45,9 +38,9 @@ std::vector<int> classify_boundary(const MeshFaces& faces, const std::vector<Pat
   std::vector<std::pair<TriangleKey, int>> known;  // sorted key -> patch, first listing first
   for (std::size_t p = 0; p < listed.size(); ++p)
     for (const auto& t : listed[p].triangles) {
-      TriangleKey k{point_of_input.at(t[0]), point_of_input.at(t[1]), point_of_input.at(t[2])};
-      if (k[0] < 0 || k[1] < 0 || k[2] < 0) continue;  // a triangle no cell touches
-      known.emplace_back(sorted_key(k), static_cast<int>(p));
+      const TriangleKey k = sorted_triangle(point_of_input.at(t[0]), point_of_input.at(t[1]), point_of_input.at(t[2]));
+      if (k[0] < 0) continue;  // a triangle no cell touches
+      known.emplace_back(k, static_cast<int>(p));
     }
   std::stable_sort(known.begin(), known.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -60,14 +53,15 @@ std::vector<int> classify_boundary(const MeshFaces& faces, const std::vector<Pat
   for (std::size_t f = faces.n_internal; f < faces.size(); ++f) {
     const auto& n = faces.nodes[f];
     if (faces.n_nodes[f] == 3) {
-      const int p = patch_of(sorted_key({n[0], n[1], n[2]}));
+      const int p = patch_of(sorted_triangle(n[0], n[1], n[2]));
       if (p >= 0) patch[f - faces.n_internal] = p;
       continue;
     }
     // A quad (the top of a fan strip) is listed as its two halves, along either diagonal.
     for (int d = 0; d < 2; ++d) {
-      const int a = patch_of(sorted_key({n[d], n[d + 1], n[d + 2]}));
-      const int b = patch_of(sorted_key({n[d + 2], n[(d + 3) % 4], n[d]}));
+      const std::array<TriangleKey, 2> halves = quad_halves(n, d);
+      const int a = patch_of(halves[0]);
+      const int b = patch_of(halves[1]);
       if (a >= 0 && a == b) {
         patch[f - faces.n_internal] = a;
         break;

@@ -166,5 +166,16 @@ TEST(MeshFaces, ACellFaceWithARepeatedNodeIsAnError) {
   EXPECT_THROW(build_mesh_faces(m), InputError);
 }
 
+TEST(QuadHalves, EachDiagonalSplitsTheQuadIntoTwoSortedTrianglesSharingIt) {
+  const std::array<std::int64_t, 4> q{7, 3, 9, 5};
+  const auto d0 = quad_halves(q, 0);  // diagonal 7-9
+  EXPECT_EQ(d0[0], (TriangleKey{3, 7, 9}));
+  EXPECT_EQ(d0[1], (TriangleKey{5, 7, 9}));
+  const auto d1 = quad_halves(q, 1);  // diagonal 3-5
+  EXPECT_EQ(d1[0], (TriangleKey{3, 5, 9}));
+  EXPECT_EQ(d1[1], (TriangleKey{3, 5, 7}));
+  EXPECT_EQ(sorted_triangle(4, -1, 2), (TriangleKey{-1, 2, 4}));
+}
+
 }  // namespace
 }  // namespace blayer
