@@ -7,12 +7,6 @@
 
 namespace blayer {
 
-WallPlanes::WallPlanes(const TriSurface& wall, const WallTopology& topo)
-    : origin_(wall.points), normal_of_(topo.vertex_triangles), normal_(wall.triangles.size()) {
-  tbb::parallel_for(0, static_cast<int>(wall.triangles.size()),
-                    [&](int f) { normal_[f] = normalized(triangle_area_vector(wall, wall.triangles[f])); });
-}
-
 WallPlanes::WallPlanes(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo)
     : origin_(layout.front.points) {
   const int nc = layout.n_columns();

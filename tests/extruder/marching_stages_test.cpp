@@ -246,7 +246,7 @@ TEST(FrontChecker, FlagsANewFrontThatCrossesTheOtherWall) {
 TEST(LayerSteps, StepsReachThePlannedHeightAboveTheWallPlanes) {
   const TriSurface wall = test::icosphere(2, 1.0);
   const WallTopology topo = build_wall_topology(wall);
-  const WallPlanes planes(wall, topo);
+  const WallPlanes planes(wall, single_column_layout(wall), topo);
   const ExtrusionParams p = test::growth_params(3, 0.01, 1.2);
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
@@ -261,7 +261,7 @@ TEST(LayerSteps, ProximityCompressesTheRemainingLayersIntoTheGapShare) {
   const double gap = 1.0;
   const TriSurface wall = facing_plates(gap);
   const WallTopology topo = build_wall_topology(wall);
-  const WallPlanes planes(wall, topo);
+  const WallPlanes planes(wall, single_column_layout(wall), topo);
   ExtrusionParams p = test::growth_params(3, 0.3, 1.0);  // T = 0.9 > 0.45
   p.height_smoothing_rings = 0;
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
@@ -286,7 +286,7 @@ TEST(LayerSteps, ProximityCompressesTheRemainingLayersIntoTheGapShare) {
 TEST(LayerSteps, AFirstLayerThatCannotBeMadeValidIsNotGrown) {
   const TriSurface wall = flat_grid(4);
   const WallTopology topo = build_wall_topology(wall);
-  const WallPlanes planes(wall, topo);
+  const WallPlanes planes(wall, single_column_layout(wall), topo);
   ExtrusionParams p = unrepaired_params(2, 0.5, 1.0);
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   StepDirections d = compute_step_directions(wall, topo, topo.used, p);
@@ -314,7 +314,7 @@ TEST(LayerSteps, AFirstLayerThatCannotBeMadeValidIsNotGrown) {
 TEST(LayerSteps, AFailingUpperLayerIsLoweredBeforeTheColumnEnds) {
   const TriSurface wall = flat_grid(4);
   const WallTopology topo = build_wall_topology(wall);
-  const WallPlanes planes(wall, topo);
+  const WallPlanes planes(wall, single_column_layout(wall), topo);
   ExtrusionParams p = unrepaired_params(2, 0.1, 4.0);  // layer 1 planned at 0.4
   const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
   StepDirections d = compute_step_directions(wall, topo, topo.used, p);

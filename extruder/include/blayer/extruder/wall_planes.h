@@ -18,9 +18,8 @@ namespace blayer {
 
 class WallPlanes {
  public:
-  // One column per wall point.
-  WallPlanes(const TriSurface& wall, const WallTopology& topo);
-  // The columns of a layout (topo = build_column_topology(layout)).
+  // The columns of a layout (topo = build_column_topology(layout); one column per wall
+  // point: single_column_layout(wall) and build_wall_topology(wall)).
   WallPlanes(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo);
 
   // min over the column's planes of (q - its wall point) . unit normal.
