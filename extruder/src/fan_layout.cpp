@@ -76,13 +76,19 @@ std::vector<Ridge> ridges_with_fans(const std::vector<Ridge>& ridges, const Vert
   return kept;
 }
 
+// Ridge ends: the single-column points at the far end of a ridge from a fan point.
+std::vector<char> ridge_end_points(const std::vector<Ridge>& ridges, const std::vector<char>& is_fan) {
+  std::vector<char> end(is_fan.size(), 0);
+  for (const Ridge& r : ridges)
+    if (is_fan[r.a] != is_fan[r.b]) end[is_fan[r.a] ? r.b : r.a] = 1;
+  return end;
+}
+
 // Two ridge-end points joined by a wall edge would split the faces over that edge from
 // both ends: the fan points on ridges to them join no_fan. Returns whether any did.
 bool drop_adjacent_ridge_ends(const TriSurface& wall, const std::vector<Ridge>& ridges,
                               const std::vector<char>& is_fan, std::vector<char>* no_fan) {
-  std::vector<char> end(is_fan.size(), 0);
-  for (const Ridge& r : ridges)
-    if (is_fan[r.a] != is_fan[r.b]) end[is_fan[r.a] ? r.b : r.a] = 1;
+  const std::vector<char> end = ridge_end_points(ridges, is_fan);
   std::vector<char> clash(is_fan.size(), 0);
   for (const Triangle& t : wall.triangles)
     for (int i = 0; i < 3; ++i)
@@ -228,9 +234,7 @@ class LayoutBuilder {
 
   // Front: wall triangles on their sector columns; a corner at a ridge end splits.
   void add_wall_triangles() {
-    std::vector<char> ridge_end(nv_, 0);
-    for (const Ridge& r : ridges_)
-      if (is_fan_[r.a] != is_fan_[r.b]) ridge_end[is_fan_[r.a] ? r.b : r.a] = 1;
+    const std::vector<char> ridge_end = ridge_end_points(ridges_, is_fan_);
     for (int f = 0; f < static_cast<int>(wall_.triangles.size()); ++f) {
       const Triangle& t = wall_.triangles[f];
       const Triangle c{column_at(t[0], f), column_at(t[1], f), column_at(t[2], f)};
