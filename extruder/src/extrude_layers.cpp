@@ -116,17 +116,11 @@ std::vector<int> fan_points_failing_straight_layers(const TriSurface& wall, cons
     }
     for (std::size_t i : checked) {
       const LayerElement& e = layout.elements[i];
-      const int n = e.kind == ElementKind::kStrip ? 4 : 3;
-      std::array<std::int64_t, 4> bottom{}, top{};
-      std::array<bool, 4> g{};
-      for (int j = 0; j < n; ++j) {
-        const int c = e.column[j];
-        bottom[j] = k == 0 ? layout.wall_point[c] : nv + c;
-        top[j] = static_cast<std::int64_t>(nv) + nc + c;
-        g[j] = grows[c];
-      }
       LayerCell cells[2];
-      const int n_cells = element_layer_cells(e, bottom, top, g, cells);
+      const int n_cells = element_layer_cells(
+          e, [&](int c) -> std::int64_t { return k == 0 ? layout.wall_point[c] : nv + c; },
+          [&](int c) -> std::int64_t { return static_cast<std::int64_t>(nv) + nc + c; },
+          [&](int c) { return grows[c] != 0; }, cells);
       bool ok = true;
       for (int q = 0; q < n_cells && ok; ++q) {
         Vec3 corners[8];
@@ -137,7 +131,7 @@ std::vector<int> fan_points_failing_straight_layers(const TriSurface& wall, cons
         ok = cell_validity(cells[q].type, corners) == Validity::kValid;
       }
       if (ok) continue;
-      for (int j = 0; j < n; ++j)
+      for (int j = 0; j < e.n_columns(); ++j)
         if (layout.in_fan[e.column[j]]) failed[layout.wall_point[e.column[j]]] = 1;
     }
     for (int c = 0; c < nc; ++c)

@@ -308,19 +308,11 @@ void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<V
   };
   tbb::parallel_for(0, ne_, [&](int e) {
     if (!elem_moved_[e]) return;
-    const LayerElement& el = elements_[e];
-    const int n = el.kind == ElementKind::kStrip ? 4 : 3;
-    std::array<std::int64_t, 4> bottom{}, up{};
-    std::array<bool, 4> g{};
-    for (int i = 0; i < n; ++i) {
-      const int c = el.column[i];
-      bottom[i] = cur_id(c);
-      up[i] = n_cur + c;
-      g[i] = grows_[c];
-    }
     LayerCell cells[2];
     invalid_[e] = 0;
-    const int n_cells = element_layer_cells(el, bottom, up, g, cells);
+    const int n_cells = element_layer_cells(
+        elements_[e], [&](int c) { return cur_id(c); }, [&](int c) { return n_cur + c; },
+        [&](int c) { return grows_[c] != 0; }, cells);
     for (int i_c = 0; i_c < n_cells; ++i_c) {
       Vec3 corners[8];
       for (int i = 0; i < corner_count(cells[i_c].type); ++i) corners[i] = position(cells[i_c].nodes[i]);
@@ -449,9 +441,8 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
   });
   tbb::parallel_for(0, ne_, [&](int e) {
     const LayerElement& el = elements_[e];
-    const int n = el.kind == ElementKind::kStrip ? 4 : 3;
     bool m = false;
-    for (int i = 0; i < n; ++i) m = m || moved_[el.column[i]];
+    for (int i = 0; i < el.n_columns(); ++i) m = m || moved_[el.column[i]];
     elem_moved_[e] = m;
   });
   check_cells(top, next);
@@ -465,7 +456,7 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
   for (int e = 0; e < ne_; ++e) {
     if (!bad_cell_[e]) continue;
     const LayerElement& el = elements_[e];
-    for (int i = 0; i < (el.kind == ElementKind::kStrip ? 4 : 3); ++i) {
+    for (int i = 0; i < el.n_columns(); ++i) {
       const int v = el.column[i];
       if (grows_[v]) {
         out->bad[v] = 1;

@@ -42,17 +42,10 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
   }
   columns_per_layer_.push_back(n_grown);
   for (std::size_t i_e = 0; i_e < elements_.size(); ++i_e) {
-    const LayerElement& e = elements_[i_e];
-    const int n = e.kind == ElementKind::kStrip ? 4 : 3;
-    std::array<std::int64_t, 4> bottom{}, top{};
-    std::array<bool, 4> g{};
-    for (int i = 0; i < n; ++i) {
-      bottom[i] = columns->top_id[e.column[i]];
-      top[i] = new_top[e.column[i]];
-      g[i] = grows[e.column[i]];
-    }
     LayerCell cells[2];
-    const int n_cells = element_layer_cells(e, bottom, top, g, cells);
+    const int n_cells = element_layer_cells(
+        elements_[i_e], [&](int c) { return columns->top_id[c]; }, [&](int c) { return new_top[c]; },
+        [&](int c) { return grows[c] != 0; }, cells);
     for (int i = 0; i < n_cells; ++i) {
       mesh_.add_cell(cells[i].type, cells[i].nodes.data());
       if (i_e >= n_wall_elements_) ++fan_cells_;

@@ -56,6 +56,8 @@ struct LayerElement {
   ElementKind kind = ElementKind::kTriangle;
   std::array<int, 4> column{-1, -1, -1, -1};  // kTriangle, kStripEnd: the first three
   int split_at = -1;
+
+  int n_columns() const { return kind == ElementKind::kStrip ? 4 : 3; }
 };
 
 struct ColumnLayout {

@@ -63,4 +63,19 @@ bool layer_cell(const std::array<std::int64_t, 3>& bottom, const std::array<std:
 int element_layer_cells(const LayerElement& e, const std::array<std::int64_t, 4>& bottom,
                         const std::array<std::int64_t, 4>& top, const std::array<bool, 4>& grows, LayerCell* out);
 
+// The same, with the ids and growth read per column c of the element: bottom_id(c),
+// top_id(c), grows(c).
+template <class BottomId, class TopId, class Grows>
+int element_layer_cells(const LayerElement& e, BottomId bottom_id, TopId top_id, Grows grows, LayerCell* out) {
+  std::array<std::int64_t, 4> bottom{}, top{};
+  std::array<bool, 4> g{};
+  for (int i = 0; i < e.n_columns(); ++i) {
+    const int c = e.column[i];
+    bottom[i] = bottom_id(c);
+    top[i] = top_id(c);
+    g[i] = grows(c);
+  }
+  return element_layer_cells(e, bottom, top, g, out);
+}
+
 }  // namespace blayer
