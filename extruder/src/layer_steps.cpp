@@ -69,9 +69,8 @@ void stop_planned_ends(int k, const ColumnPlan& plan, ColumnState* columns) {
     if (!columns->stopped[v] && plan.planned_layers[v] <= k) columns->stop(v, plan.end_reason[v]);
 }
 
-bool stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnState* columns,
+void stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnState* columns,
                      std::vector<char>* grows) {
-  bool any = false;
   const Csr& g = topo.group_columns;
   for (int i = 0; i < g.n_rows(); ++i) {
     const int* first_stopped = std::find_if(g.begin(i), g.end(i), [&](int c) { return columns->stopped[c] != 0; });
@@ -82,10 +81,8 @@ bool stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnSt
       end_column_after(plan, *c, k, why);
       columns->stop(*c, why);
       if (grows) (*grows)[*c] = 0;
-      any = true;
     }
   }
-  return any;
 }
 
 void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& topo, const WallPlanes& planes,
