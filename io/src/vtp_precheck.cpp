@@ -1,8 +1,10 @@
 #include "vtp_precheck.h"
 
+#include <vtkNew.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <iomanip>
@@ -28,11 +30,16 @@ int base64_value(char c) {
 }
 
 // Consecutive bytes of one array's data as VTK reads them: raw from a position of the
-// file, or decoded from base64 four characters at a time ('=' pads the last group of
-// a separately encoded part, as VTK writes the header and the blocks).
+// file, or decoded from base64 four characters at a time ('=' pads the last group of a
+// separately encoded part: VTK encodes an array's header, then all its blocks, as two
+// base64 streams).
 class DataBytes {
  public:
-  DataBytes(std::string_view file, std::size_t pos, bool base64) : file_(file), pos_(pos), base64_(base64) {}
+  DataBytes(std::string_view file, std::size_t pos, bool base64)
+      : file_(file), pos_(pos), base64_(base64), run_end_(std::min(pos, file.size())) {
+    if (base64_)
+      while (run_end_ < file_.size() && (base64_value(file_[run_end_]) >= 0 || file_[run_end_] == '=')) ++run_end_;
+  }
 
   // The next n bytes, or nullopt when the file ends first or a character is not base64.
   std::optional<std::string> read(std::size_t n) {
@@ -55,8 +62,7 @@ class DataBytes {
   // An upper bound on the bytes left after the current position.
   double bytes_left() const {
     if (!base64_) return pos_ >= file_.size() ? 0.0 : static_cast<double>(file_.size() - pos_);
-    std::size_t chars = 0;
-    for (std::size_t i = pos_; i < file_.size() && (base64_value(file_[i]) >= 0 || file_[i] == '='); ++i) ++chars;
+    const std::size_t chars = run_end_ > pos_ ? run_end_ - pos_ : 0;  // the base64 run from here
     return static_cast<double>(pending_.size()) + 0.75 * static_cast<double>(chars);
   }
 
@@ -78,6 +84,7 @@ class DataBytes {
   std::string_view file_;
   std::size_t pos_;
   bool base64_;
+  std::size_t run_end_;  // base64: where the run of base64 characters from the start ends
   std::string pending_;
 };
 
@@ -118,7 +125,7 @@ std::string bytes_text(double bytes) {
 
 std::string named(vtkXMLDataElement& e) {
   const char* name = e.GetAttribute("Name");
-  return std::string("DataArray \"") + (name ? name : "") + "\"";
+  return std::string(e.GetName() ? e.GetName() : "element") + " \"" + (name ? name : "") + "\"";
 }
 
 // The claim of one compressed array's header that the file cannot back, or "".
@@ -186,12 +193,40 @@ std::string check_compressed_header(DataBytes data, const HeaderFormat& f, doubl
   return why.empty() ? why : why + " (a corrupt header)";
 }
 
+// The first element named `name` in document order, or null.
+vtkXMLDataElement* find_element(vtkXMLDataElement& e, const char* name) {
+  if (e.GetName() && std::strcmp(e.GetName(), name) == 0) return &e;
+  for (int i = 0; i < e.GetNumberOfNestedElements(); ++i)
+    if (vtkXMLDataElement* found = find_element(*e.GetNestedElement(i), name)) return found;
+  return nullptr;
+}
+
 struct Walk {
-  vtkXMLDataParser& parser;
   std::string_view file;
   HeaderFormat format;
-  bool appended_base64 = false;
+  vtkTypeInt64 appended_at = 0;  // where the appended data start (0 without them)
+  bool appended_base64 = true;
   double block_allowed = 0;
+
+  // VTK reads an element that has an offset attribute from the appended data (an offset
+  // that does not parse is 0), whatever its format says, and one without an offset
+  // whose format is "binary" inline; whatever its tag is named.
+  std::string array(vtkXMLDataElement& e) const {
+    if (e.GetAttribute("offset")) {
+      vtkTypeInt64 offset = 0;
+      e.GetScalarAttribute("offset", offset);
+      const std::size_t start = std::min(static_cast<std::size_t>(std::max<vtkTypeInt64>(appended_at, 0)), file.size());
+      if (offset < 0 || static_cast<std::uint64_t>(offset) > file.size() - start)
+        return named(e) + " has an offset of " + std::to_string(offset) + " outside the file";
+      return check_compressed_header(DataBytes(file, start + static_cast<std::size_t>(offset), appended_base64),
+                                     format, block_allowed, named(e));
+    }
+    const char* how = e.GetAttribute("format");
+    if (how && std::strcmp(how, "binary") == 0)
+      return check_compressed_header(DataBytes(file, inline_data_position(e, file), true), format, block_allowed,
+                                     named(e));
+    return "";
+  }
 
   std::string element(vtkXMLDataElement& e) const {
     const char* name = e.GetName();
@@ -199,24 +234,9 @@ struct Walk {
       std::string why = check_points(e);
       if (!why.empty()) return why;
     }
-    if (format.compressed && name && (std::strcmp(name, "DataArray") == 0 || std::strcmp(name, "Array") == 0)) {
-      // VTK reads an array with an offset from the appended data, whatever its format
-      // says, and one whose format is "binary" inline: check each way it may be read.
-      const char* how = e.GetAttribute("format");
-      if (how && std::strcmp(how, "binary") == 0) {
-        std::string why = check_compressed_header(DataBytes(file, inline_data_position(e, file), true), format,
-                                                  block_allowed, named(e));
-        if (!why.empty()) return why;
-      }
-      vtkTypeInt64 offset = 0;
-      if (e.GetScalarAttribute("offset", offset) && parser.GetAppendedDataPosition() > 0) {
-        const vtkTypeInt64 at = parser.GetAppendedDataPosition() + offset;
-        if (offset < 0 || at < 0 || static_cast<std::size_t>(at) > file.size())
-          return named(e) + " has an offset of " + std::to_string(offset) + " outside the appended data";
-        std::string why = check_compressed_header(DataBytes(file, static_cast<std::size_t>(at), appended_base64), format,
-                                                  block_allowed, named(e));
-        if (!why.empty()) return why;
-      }
+    if (format.compressed) {
+      std::string why = array(e);
+      if (!why.empty()) return why;
     }
     for (int i = 0; i < e.GetNumberOfNestedElements(); ++i) {
       std::string why = element(*e.GetNestedElement(i));
@@ -228,21 +248,28 @@ struct Walk {
 
 }  // namespace
 
-std::string vtp_precheck_problem(vtkXMLDataParser& parser, std::string_view bytes) {
-  vtkXMLDataElement* root = parser.GetRootElement();
-  if (!root) return "";
-  Walk walk{parser, bytes, {}, false, vtp_decoded_bytes_allowed(bytes.size())};
-  const char* compressor = root->GetAttribute("compressor");
+std::string vtp_precheck_problem(std::string_view bytes) {
+  std::istringstream stream{std::string(bytes)};
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetStream(&stream);
+  if (!parser->Parse() || !parser->GetRootElement()) return "";  // VTK's reader says why
+  vtkXMLDataElement& root = *parser->GetRootElement();
+  Walk walk;
+  walk.file = bytes;
+  walk.block_allowed = vtp_decoded_bytes_allowed(bytes.size());
+  const char* compressor = root.GetAttribute("compressor");
   walk.format.compressed = compressor && *compressor;
-  const char* header_type = root->GetAttribute("header_type");
+  const char* header_type = root.GetAttribute("header_type");
   walk.format.word_bytes = header_type && std::strcmp(header_type, "UInt64") == 0 ? 8 : 4;
-  const char* order = root->GetAttribute("byte_order");
+  const char* order = root.GetAttribute("byte_order");
   walk.format.big_endian = order && std::strcmp(order, "BigEndian") == 0;
-  if (vtkXMLDataElement* appended = root->FindNestedElementWithName("AppendedData")) {
+  walk.appended_at = parser->GetAppendedDataPosition();
+  // VTK reads appended data as base64 unless their encoding is "raw".
+  if (vtkXMLDataElement* appended = find_element(root, "AppendedData")) {
     const char* encoding = appended->GetAttribute("encoding");
-    walk.appended_base64 = encoding && std::strcmp(encoding, "base64") == 0;
+    walk.appended_base64 = !(encoding && std::strcmp(encoding, "raw") == 0);
   }
-  return walk.element(*root);
+  return walk.element(root);
 }
 
 }  // namespace blayer::detail

@@ -7,9 +7,10 @@
 // corrupt header claims exabytes. The release build survives that (the reader's child
 // process has a bounded address space and VTK's bad_alloc becomes an InputError), but
 // under AddressSanitizer operator new reports a huge request instead of throwing. This
-// check reads the headers through VTK's own parse of the XML (element positions,
-// appended-data position, header type, compressor) and refuses a claim the file cannot
-// back, naming the array, in every build.
+// check parses the XML with VTK's own parser (element positions, appended-data position,
+// header type, compressor), before the reader does (which reads some arrays, time
+// values, while it gathers the file's information), reads each header where VTK would
+// and refuses a claim the file cannot back, naming the array, in every build.
 //
 // A Points array whose component count is not 3 makes VTK 9.1 fail after it has taken
 // objects it never frees; refused here, it is named plainly and nothing leaks.
@@ -19,8 +20,6 @@
 #include <string>
 #include <string_view>
 
-class vtkXMLDataParser;
-
 namespace blayer::detail {
 
 // The most bytes one block of a .vtp file may decompress to, and the address space
@@ -29,10 +28,11 @@ namespace blayer::detail {
 double vtp_decoded_bytes_allowed(std::size_t file_bytes);
 
 // "" when the points' arrays have 3 components and every compressed-data header of the
-// parsed file claims what the file can hold; else the first problem, naming its
-// DataArray. A header that cannot be decoded (not base64, or cut short) is reported
-// too: VTK could not read its array either. Uncompressed arrays' headers are not
-// checked: they only bound a copy into an array VTK sized from the element counts.
-std::string vtp_precheck_problem(vtkXMLDataParser& parser, std::string_view bytes);
+// file claims what the file can hold (or the XML does not parse: VTK's reader then says
+// why); else the first problem, naming its array. A header that cannot be decoded (not
+// base64, or cut short) is reported too: VTK could not read its array either.
+// Uncompressed arrays' headers are not checked: they only bound a copy into an array
+// VTK sized from the element counts.
+std::string vtp_precheck_problem(std::string_view bytes);
 
 }  // namespace blayer::detail

@@ -14,7 +14,6 @@
 #include <vtkOutputWindow.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
-#include <vtkXMLDataParser.h>
 #include <vtkXMLPolyDataReader.h>
 
 #include <sys/resource.h>
@@ -111,18 +110,18 @@ void limit_address_space(std::size_t file_bytes) {
 
 PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
   CapturedVtkErrors messages;
+  auto fail_if_vtk_failed = [&](bool failed) {
+    if (failed || !messages.first().empty())
+      fail_at(name, 0, "cannot parse the .vtp file" + (messages.first().empty() ? "" : " (VTK: " + messages.first() + ")"));
+  };
+  // The checks on the XML before the reader reads any data.
+  const std::string problem = vtp_precheck_problem(bytes);
+  fail_if_vtk_failed(false);
+  if (!problem.empty()) fail_at(name, 0, "cannot parse the .vtp file: " + problem);
   vtkNew<vtkXMLPolyDataReader> reader;
   reader->ReadFromInputStringOn();
   reader->SetInputString(std::string(bytes));
   try {
-    // The XML first (no data is read yet), then the checks on it, then the data.
-    reader->UpdateInformation();
-    if (reader->GetErrorCode() != 0 || !messages.first().empty())
-      fail_at(name, 0, "cannot parse the .vtp file" + (messages.first().empty() ? "" : " (VTK: " + messages.first() + ")"));
-    if (vtkXMLDataParser* parser = reader->GetXMLParser()) {
-      const std::string problem = vtp_precheck_problem(*parser, bytes);
-      if (!problem.empty()) fail_at(name, 0, "cannot parse the .vtp file: " + problem);
-    }
     reader->Update();
   } catch (const std::bad_alloc&) {
     // VTK allocates what the file's counts and compressed-block headers claim; a corrupt
@@ -131,8 +130,7 @@ PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
                      "data block header)");
   }
   vtkPolyData* poly = reader->GetOutput();
-  if (reader->GetErrorCode() != 0 || !messages.first().empty() || !poly)
-    fail_at(name, 0, "cannot parse the .vtp file" + (messages.first().empty() ? "" : " (VTK: " + messages.first() + ")"));
+  fail_if_vtk_failed(reader->GetErrorCode() != 0 || !poly);
   if (poly->GetNumberOfStrips() > 0) fail_at(name, 0, "triangle strips are not supported; convert them to triangles");
   PolygonSoup soup;
   const vtkIdType np = poly->GetNumberOfPoints();

@@ -1,6 +1,7 @@
 // A .vtp whose compressed-data header claims more than the file can hold is refused
 // before VTK allocates the claim, naming the array, in every layout VTK writes: inline
-// base64, appended raw and appended base64, with 32- and 64-bit header words (under
+// base64, appended raw and appended base64, with 32- and 64-bit header words, in either
+// byte order, on arrays of one block and of several (under
 // AddressSanitizer VTK's allocation of such a claim would be a sanitizer report, not an
 // exception); so is one whose points do not have 3 components.
 #include <gtest/gtest.h>
@@ -10,8 +11,11 @@
 #include <vtkPolyData.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "blayer/core/errors.h"
 #include "blayer/io/read_surface.h"
@@ -24,6 +28,7 @@ struct Layout {
   int data_mode;     // vtkXMLWriter::Binary (inline) or ::Appended
   bool encode;       // appended data as base64
   bool words_of_64;  // header_type UInt64, else UInt32
+  bool big_endian = false;
 };
 
 const Layout kLayouts[] = {
@@ -32,18 +37,12 @@ const Layout kLayouts[] = {
     {"appended raw, UInt64 header", vtkXMLWriter::Appended, false, true},
     {"appended raw, UInt32 header", vtkXMLWriter::Appended, false, false},
     {"appended base64, UInt32 header", vtkXMLWriter::Appended, true, false},
+    {"appended base64, UInt64 header", vtkXMLWriter::Appended, true, true},
+    {"appended raw, UInt64 header, big endian", vtkXMLWriter::Appended, false, true, true},
+    {"inline base64, UInt32 header, big endian", vtkXMLWriter::Binary, true, false, true},
 };
 
-// A tetrahedron's surface written by VTK, zlib-compressed.
-std::string tetra_vtp(const Layout& layout) {
-  vtkNew<vtkPoints> points;
-  for (const auto& p : {std::array<double, 3>{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) points->InsertNextPoint(p.data());
-  vtkNew<vtkCellArray> triangles;
-  for (const auto& t : {std::array<vtkIdType, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}})
-    triangles->InsertNextCell(3, t.data());
-  vtkNew<vtkPolyData> poly;
-  poly->SetPoints(points);
-  poly->SetPolys(triangles);
+std::string write_vtp(vtkPolyData* poly, const Layout& layout) {
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(poly);
   writer->WriteToOutputStringOn();
@@ -54,8 +53,42 @@ std::string tetra_vtp(const Layout& layout) {
     writer->SetHeaderTypeToUInt64();
   else
     writer->SetHeaderTypeToUInt32();
+  if (layout.big_endian)
+    writer->SetByteOrderToBigEndian();
+  else
+    writer->SetByteOrderToLittleEndian();
   writer->Write();
   return writer->GetOutputString();
+}
+
+// A tetrahedron's surface written by VTK, zlib-compressed: every array one block.
+std::string tetra_vtp(const Layout& layout) {
+  vtkNew<vtkPoints> points;
+  for (const auto& p : {std::array<double, 3>{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) points->InsertNextPoint(p.data());
+  vtkNew<vtkCellArray> triangles;
+  for (const auto& t : {std::array<vtkIdType, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}})
+    triangles->InsertNextCell(3, t.data());
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  poly->SetPolys(triangles);
+  return write_vtp(poly, layout);
+}
+
+// 3000 points (36,000 bytes of floats: two blocks of VTK's 32,768) and a strip of 2998
+// triangles over them, in a tetrahedron's place for the headers of several blocks.
+constexpr int kStripPoints = 3000;
+std::string strip_vtp(const Layout& layout) {
+  vtkNew<vtkPoints> points;
+  for (int i = 0; i < kStripPoints; ++i) points->InsertNextPoint(0.5 * i, i % 2, 0.25 * (i % 3));
+  vtkNew<vtkCellArray> triangles;
+  for (vtkIdType i = 0; i + 2 < kStripPoints; ++i) {
+    const vtkIdType t[3] = {i, i + 1, i + 2};
+    triangles->InsertNextCell(3, t);
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  poly->SetPolys(triangles);
+  return write_vtp(poly, layout);
 }
 
 const std::string kBase64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -86,24 +119,65 @@ std::string encode_base64(const std::string& bytes) {
   return out;
 }
 
-// The file with word `word` of the first array's compressed-data header (the points':
-// the tetrahedron has no point data) set to `value`: 0 the block count, 1 the block
-// size, 2 the last block's size, 3 the first block's compressed size.
-std::string with_header_word(std::string vtp, const Layout& layout, int word, std::uint64_t value) {
-  std::size_t at = 0;
-  if (layout.data_mode == vtkXMLWriter::Binary) {
-    at = vtp.find('>', vtp.find("<DataArray")) + 1;
-    while (vtp[at] == ' ' || vtp[at] == '\n') ++at;
-  } else {
-    at = vtp.find('_', vtp.find("<AppendedData")) + 1;
+// Where the first array's compressed-data header lies (the points': neither test surface
+// has point data), and how it is stored.
+struct HeaderSpan {
+  std::size_t at = 0;      // its first character
+  bool base64 = false;
+  std::size_t word = 4;    // bytes per word
+  bool big_endian = false;
+  std::size_t n_words = 0; // 3 + the number of blocks
+  std::size_t chars() const {  // characters the header takes in the file
+    return base64 ? 4 * ((n_words * word + 2) / 3) : n_words * word;
   }
-  const std::size_t w = layout.words_of_64 ? 8 : 4;
-  const std::size_t header_bytes = 4 * w;  // one block: count, size, last size, one compressed size
-  const bool base64 = layout.data_mode == vtkXMLWriter::Binary || layout.encode;
-  const std::size_t chars = base64 ? 4 * ((header_bytes + 2) / 3) : header_bytes;
-  std::string header = base64 ? decode_base64(vtp.substr(at, chars)) : vtp.substr(at, chars);
-  for (std::size_t b = 0; b < w; ++b) header[word * w + b] = static_cast<char>((value >> (8 * b)) & 255);
-  vtp.replace(at, chars, base64 ? encode_base64(header) : header);
+};
+
+std::string decode_span(const std::string& vtp, std::size_t at, std::size_t chars, bool base64) {
+  return base64 ? decode_base64(vtp.substr(at, chars)) : vtp.substr(at, chars);
+}
+
+std::uint64_t word_of(const std::string& header, const HeaderSpan& h, std::size_t i) {
+  std::uint64_t v = 0;
+  for (std::size_t b = 0; b < h.word; ++b)
+    v = (v << 8) | static_cast<unsigned char>(header[i * h.word + (h.big_endian ? b : h.word - 1 - b)]);
+  return v;
+}
+
+HeaderSpan first_header(const std::string& vtp, const Layout& layout) {
+  HeaderSpan h;
+  h.word = layout.words_of_64 ? 8 : 4;
+  h.big_endian = layout.big_endian;
+  h.base64 = layout.data_mode == vtkXMLWriter::Binary || layout.encode;
+  if (layout.data_mode == vtkXMLWriter::Binary) {
+    h.at = vtp.find('>', vtp.find("<DataArray")) + 1;
+    while (vtp[h.at] == ' ' || vtp[h.at] == '\n') ++h.at;
+  } else {
+    h.at = vtp.find('_', vtp.find("<AppendedData")) + 1;
+  }
+  h.n_words = 3;  // 12 or 24 bytes: whole base64 groups
+  const std::uint64_t blocks = word_of(decode_span(vtp, h.at, h.chars(), h.base64), h, 0);
+  h.n_words = 3 + blocks;
+  return h;
+}
+
+// The first array's header words.
+std::vector<std::uint64_t> header_words(const std::string& vtp, const Layout& layout) {
+  const HeaderSpan h = first_header(vtp, layout);
+  const std::string header = decode_span(vtp, h.at, h.chars(), h.base64);
+  std::vector<std::uint64_t> words;
+  for (std::size_t i = 0; i < h.n_words; ++i) words.push_back(word_of(header, h, i));
+  return words;
+}
+
+// The file with word `word` of the first array's compressed-data header set to
+// `value`: 0 the block count, 1 the block size, 2 the last block's size, 3 + i block
+// i's compressed size.
+std::string with_header_word(std::string vtp, const Layout& layout, std::size_t word, std::uint64_t value) {
+  const HeaderSpan h = first_header(vtp, layout);
+  std::string header = decode_span(vtp, h.at, h.chars(), h.base64);
+  for (std::size_t b = 0; b < h.word; ++b)
+    header[word * h.word + (h.big_endian ? h.word - 1 - b : b)] = static_cast<char>((value >> (8 * b)) & 255);
+  vtp.replace(h.at, h.chars(), h.base64 ? encode_base64(header) : header);
   return vtp;
 }
 
@@ -184,12 +258,63 @@ TEST(VtpPrecheck, AnArrayWithAnOffsetIsCheckedInTheAppendedDataWhateverItsFormat
       << read_error(vtp);
 }
 
-// The check reads the header where VTK does: rewriting a word with its own value
-// changes nothing, so the helper above patches the header, not some other bytes.
-TEST(VtpPrecheck, RewritingAHeaderWordWithItsOwnValueStillReads) {
+// The file's text with the first `from` after `after` replaced by `to`.
+std::string replaced(std::string s, const std::string& after, const std::string& from, const std::string& to) {
+  const std::size_t at = s.find(from, s.find(after));
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? s : s.replace(at, from.size(), to);
+}
+
+// VTK reads appended data as base64 unless their encoding is "raw".
+TEST(VtpPrecheck, AppendedDataWithoutAnEncodingAreCheckedAsBase64) {
+  const Layout& b64 = kLayouts[4];
+  const std::string vtp = replaced(with_header_word(tetra_vtp(b64), b64, 0, 1000000000), "<AppendedData",
+                                   "encoding=\"base64\"", "");
+  EXPECT_NE(read_error(vtp).find("claims 1000000000 blocks"), std::string::npos) << read_error(vtp);
+}
+
+// VTK reads an array with an offset attribute from the appended data, at 0 when the
+// offset does not parse, and whatever its tag is named.
+TEST(VtpPrecheck, AnOffsetThatDoesNotParseIsReadAsZero) {
+  const Layout& raw = kLayouts[2];
+  const std::string vtp =
+      replaced(with_header_word(tetra_vtp(raw), raw, 0, 1000000000), "<Points>", "offset=\"0\"", "offset=\"x\"");
+  EXPECT_NE(read_error(vtp).find("claims 1000000000 blocks"), std::string::npos) << read_error(vtp);
+}
+
+TEST(VtpPrecheck, AnArrayUnderAnotherTagNameIsCheckedToo) {
+  const Layout& raw = kLayouts[2];
+  std::string vtp = with_header_word(tetra_vtp(raw), raw, 0, 1000000000);
+  vtp = replaced(vtp, "<Points>", "<DataArray", "<DataArrax");
+  const std::size_t tag_end = vtp.find('>', vtp.find("<DataArrax"));
+  if (vtp[tag_end - 1] != '/') vtp = replaced(vtp, "<DataArrax", "</DataArray>", "</DataArrax>");
+  EXPECT_NE(read_error(vtp).find("DataArrax \"Points\" claims 1000000000 blocks"), std::string::npos)
+      << read_error(vtp);
+}
+
+// The helpers read and write the header where VTK does: every word written back with
+// its own value leaves a file that reads, on one block and on several.
+TEST(VtpPrecheck, EveryHeaderWordWrittenBackWithItsOwnValueStillReads) {
+  for (const Layout& layout : kLayouts)
+    for (const std::string& vtp : {tetra_vtp(layout), strip_vtp(layout)}) {
+      const std::vector<std::uint64_t> words = header_words(vtp, layout);
+      ASSERT_GE(words.size(), 4u) << layout.name;
+      for (std::size_t w = 0; w < words.size(); ++w)
+        EXPECT_EQ(read_error(with_header_word(vtp, layout, w, words[w])), "") << layout.name << ", word " << w;
+    }
+}
+
+TEST(VtpPrecheck, ThePointsOfSeveralBlocksReadBackAndTheirLastBlocksSizeIsChecked) {
   for (const Layout& layout : kLayouts) {
-    const std::string vtp = tetra_vtp(layout);
-    EXPECT_EQ(read_error(with_header_word(vtp, layout, 0, 1)), "") << layout.name;
+    const std::string vtp = strip_vtp(layout);
+    const PolygonSoup soup = parse_polygon_soup(vtp, "vtp", "t.vtp");
+    EXPECT_EQ(soup.points.size(), static_cast<std::size_t>(kStripPoints)) << layout.name;
+    EXPECT_EQ(soup.faces.size(), static_cast<std::size_t>(kStripPoints - 2)) << layout.name;
+    const std::vector<std::uint64_t> words = header_words(vtp, layout);
+    ASSERT_EQ(words[0], 2u) << layout.name;  // 36,000 bytes in blocks of 32,768
+    EXPECT_NE(read_error(with_header_word(vtp, layout, 4, 1000000)).find("bytes of compressed blocks"),
+              std::string::npos)
+        << layout.name;
   }
 }
 

@@ -55,9 +55,10 @@ MeshFaces build_mesh_faces(const VolumeMesh& mesh);
 using TriangleKey = std::array<std::int64_t, 3>;
 TriangleKey sorted_triangle(std::int64_t a, std::int64_t b, std::int64_t c);
 
-// The two triangles that quad face q splits into along diagonal d (0: q0-q2, 1: q1-q3),
-// as sorted triangles: a quad of the mesh (the top of a fan strip) appears in triangle
-// lists (the envelope, the boundary patches) as the two halves of one diagonal.
+// The two triangles that quad face q splits into along diagonal d (0: q0-q2, 1: q1-q3;
+// no other value), as sorted triangles: a quad of the mesh (the top of a fan strip)
+// appears in triangle lists (the envelope, the boundary patches) as the two halves of
+// one diagonal.
 std::array<TriangleKey, 2> quad_halves(const std::array<std::int64_t, 4>& q, int d);
 
 }  // namespace blayer
