@@ -125,7 +125,7 @@ std::string bytes_text(double bytes) {
 
 std::string named(vtkXMLDataElement& e) {
   const char* name = e.GetAttribute("Name");
-  return std::string(e.GetName() ? e.GetName() : "element") + " \"" + (name ? name : "") + "\"";
+  return std::string(e.GetName() ? e.GetName() : "element") + (name ? " \"" + std::string(name) + "\"" : " (no Name)");
 }
 
 // The claim of one compressed array's header that the file cannot back, or "".
