@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 #include <utility>
+#include <vector>
 
 namespace blayer::detail {
 
@@ -193,6 +194,69 @@ std::string check_compressed_header(DataBytes data, const HeaderFormat& f, doubl
   return why.empty() ? why : why + " (a corrupt header)";
 }
 
+// Bytes per value of a DataArray's type attribute (1 when unknown: the least any takes).
+double value_bytes(vtkXMLDataElement& a) {
+  const char* type = a.GetAttribute("type");
+  if (!type) return 1;
+  const std::string t = type;
+  if (t == "Int16" || t == "UInt16") return 2;
+  if (t == "Int32" || t == "UInt32" || t == "Float32") return 4;
+  if (t == "Int64" || t == "UInt64" || t == "Float64") return 8;
+  return 1;
+}
+
+// What the element counts make VTK allocate before it reads any data: the points and
+// every point- and cell-data array, sized from the pieces' counts (summed over the
+// pieces), and each cell type's offsets. A count too large for the allowance fails
+// VTK's allocation, after which VTK 9.1 leaks the arrays it had made.
+std::string count_problem(vtkXMLDataElement& root, double allowed) {
+  std::vector<vtkXMLDataElement*> pieces;
+  std::vector<vtkXMLDataElement*> stack{&root};
+  while (!stack.empty()) {
+    vtkXMLDataElement* e = stack.back();
+    stack.pop_back();
+    if (e->GetName() && std::strcmp(e->GetName(), "Piece") == 0) pieces.push_back(e);
+    for (int i = 0; i < e->GetNumberOfNestedElements(); ++i) stack.push_back(e->GetNestedElement(i));
+  }
+  double points = 0, cells = 0;
+  std::ostringstream why;
+  for (vtkXMLDataElement* piece : pieces) {
+    for (const char* count : {"NumberOfPoints", "NumberOfVerts", "NumberOfLines", "NumberOfStrips", "NumberOfPolys"}) {
+      vtkIdType n = 0;
+      if (!piece->GetScalarAttribute(count, n) || n <= 0) continue;
+      const bool of_points = std::strcmp(count, "NumberOfPoints") == 0;
+      (of_points ? points : cells) += static_cast<double>(n);
+      const double bytes = of_points ? 12.0 * static_cast<double>(n) : 4.0 * (static_cast<double>(n) + 1);
+      if (bytes > allowed) {
+        why << "a piece claims " << count << "=" << n << ", " << bytes_text(bytes) << " bytes or more, more than "
+            << bytes_text(allowed) << " (64 times the file's size plus 2 GiB)";
+        return why.str();
+      }
+    }
+  }
+  for (vtkXMLDataElement* piece : pieces)
+    for (int i = 0; i < piece->GetNumberOfNestedElements(); ++i) {
+      vtkXMLDataElement& group = *piece->GetNestedElement(i);
+      const char* g = group.GetName();
+      const bool per_point = g && (std::strcmp(g, "PointData") == 0 || std::strcmp(g, "Points") == 0);
+      const bool per_cell = g && std::strcmp(g, "CellData") == 0;
+      if (!per_point && !per_cell) continue;
+      for (int j = 0; j < group.GetNumberOfNestedElements(); ++j) {
+        vtkXMLDataElement& a = *group.GetNestedElement(j);
+        int components = 1;
+        a.GetScalarAttribute("NumberOfComponents", components);
+        const double bytes = (per_point ? points : cells) * std::max(components, 1) * value_bytes(a);
+        if (bytes > allowed) {
+          why << named(a) << " of " << components << " components per " << (per_point ? "point" : "cell")
+              << " needs " << bytes_text(bytes) << " bytes, more than " << bytes_text(allowed)
+              << " (64 times the file's size plus 2 GiB)";
+          return why.str();
+        }
+      }
+    }
+  return "";
+}
+
 // The first element named `name` in document order, or null.
 vtkXMLDataElement* find_element(vtkXMLDataElement& e, const char* name) {
   if (e.GetName() && std::strcmp(e.GetName(), name) == 0) return &e;
@@ -254,6 +318,8 @@ std::string vtp_precheck_problem(std::string_view bytes) {
   parser->SetStream(&stream);
   if (!parser->Parse() || !parser->GetRootElement()) return "";  // VTK's reader says why
   vtkXMLDataElement& root = *parser->GetRootElement();
+  const std::string counts = count_problem(root, vtp_decoded_bytes_allowed(bytes.size()));
+  if (!counts.empty()) return counts;
   Walk walk;
   walk.file = bytes;
   walk.block_allowed = vtp_decoded_bytes_allowed(bytes.size());

@@ -12,8 +12,9 @@
 // values, while it gathers the file's information), reads each header where VTK would
 // and refuses a claim the file cannot back, naming the array, in every build.
 //
-// A Points array whose component count is not 3 makes VTK 9.1 fail after it has taken
-// objects it never frees; refused here, it is named plainly and nothing leaks.
+// A Points array whose component count is not 3, or element counts whose arrays cannot
+// be allocated, make VTK 9.1 fail after it has taken objects it never frees; refused
+// here, they are named plainly and nothing leaks.
 #pragma once
 
 #include <cstddef>
@@ -27,8 +28,9 @@ namespace blayer::detail {
 // few times, not 64) plus 2 GiB.
 double vtp_decoded_bytes_allowed(std::size_t file_bytes);
 
-// "" when the points' arrays have 3 components and every compressed-data header of the
-// file claims what the file can hold (or the XML does not parse: VTK's reader then says
+// "" when the element counts fit the allowance (the points and the point- and cell-data
+// arrays they size), the points' arrays have 3 components and every compressed-data
+// header of the file claims what the file can hold (or the XML does not parse: VTK's reader then says
 // why); else the first problem, naming its array. A header that cannot be decoded (not
 // base64, or cut short) is reported too: VTK could not read its array either.
 // Uncompressed arrays' headers are not checked: they only bound a copy into an array

@@ -318,6 +318,34 @@ TEST(VtpPrecheck, ThePointsOfSeveralBlocksReadBackAndTheirLastBlocksSizeIsChecke
   }
 }
 
+// A tetrahedron in ASCII with `point_data` inside PointData and `polys` as its
+// NumberOfPolys.
+std::string ascii_tetra(const std::string& point_data, const std::string& polys = "4") {
+  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "<PolyData><Piece NumberOfPoints=\"4\" NumberOfPolys=\"" + polys + "\">\n<PointData>" + point_data +
+         "</PointData>\n<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
+         "0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points>\n<Polys>"
+         "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 2 1 0 1 3 1 2 3 0 3 2</DataArray>"
+         "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3 6 9 12</DataArray></Polys>\n"
+         "</Piece></PolyData></VTKFile>\n";
+}
+
+// VTK sizes the points and the point- and cell-data arrays from the element counts
+// before it reads them; VTK 9.1 leaks what it made when that allocation fails.
+TEST(VtpPrecheck, CountsWhoseArraysExceedTheAllowanceAreRefusedNamingThem) {
+  EXPECT_EQ(read_error(ascii_tetra("")), "");
+  EXPECT_EQ(read_error(ascii_tetra("<DataArray type=\"Float64\" Name=\"p\" NumberOfComponents=\"2\" "
+                                   "format=\"ascii\">1 2 3 4 5 6 7 8</DataArray>")),
+            "");
+  const std::string wide = read_error(ascii_tetra(
+      "<DataArray type=\"Float64\" Name=\"p\" NumberOfComponents=\"100000000\" format=\"ascii\">1</DataArray>"));
+  EXPECT_NE(wide.find("DataArray \"p\" of 100000000 components per point needs 3200000000 bytes"), std::string::npos)
+      << wide;
+  const std::string polys = read_error(ascii_tetra("", "1000000000"));
+  EXPECT_NE(polys.find("a piece claims NumberOfPolys=1000000000, 4000000004 bytes or more"), std::string::npos)
+      << polys;
+}
+
 // VTK 9.1 reads such points and fails after taking objects it never frees.
 TEST(VtpPrecheck, PointsWithoutThreeComponentsAreRefusedNamingTheCount) {
   std::string vtp = tetra_vtp(kLayouts[2]);
