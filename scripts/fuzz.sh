@@ -24,10 +24,10 @@ if ((${#targets[@]} == 0)); then
 fi
 
 # allocator_may_return_null=1: malloc returns null for an allocation too large to
-# satisfy, instead of ASan aborting; VTK sizes arrays from a .vtp's element counts with
-# malloc and reports a null as an error. (ASan's operator new still reports such a
-# request: the VTP reader refuses the headers that would make VTK ask, see
-# io/src/vtp_precheck.h.)
+# satisfy, instead of ASan aborting; VTK sizes a .vtp's connectivity from the offsets it
+# reads (data no precheck sees) with malloc and reports a null as an error. (ASan's
+# operator new still reports such a request: the VTP reader refuses the counts and
+# headers that would make VTK ask, see io/src/vtp_precheck.h.)
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:symbolize=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export ASAN_SYMBOLIZER_PATH="$(command -v llvm-symbolizer-14 || true)"
@@ -39,7 +39,7 @@ for t in "${targets[@]}"; do
   log="$build/logs/$t.log"
   status=0
   before="$(find "$build/findings/$t" -type f | wc -l)"
-  # VTK sizes a .vtp's arrays from its (possibly corrupt) element counts with malloc;
+  # VTK sizes a .vtp's connectivity from its (possibly corrupt) offsets with malloc;
   # a large request that the system grants lazily is harmless (the reader then finds
   # the data missing and blayer refuses the file), so for the VTP target only resident
   # memory is limited, not the size of one allocation.

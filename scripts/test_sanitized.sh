@@ -32,10 +32,10 @@ cmake --build "$build" -j "$jobs"
 # process with SIGSEGV as in a normal build (the fill's crash-isolation tests kill a
 # child that way on purpose and check the signal; ASan's handler would abort instead).
 # allocator_may_return_null: malloc returns null for a request too large to satisfy
-# instead of aborting (VTK sizes arrays from a file's element counts with malloc and
-# reports a failed one as an error). The .vtp files whose headers claim more memory than
-# exists run here too: the reader refuses them before VTK's operator new would be asked
-# (ASan's reports such a request instead of throwing); under ASan the readers run in the
+# instead of aborting (VTK sizes a .vtp's connectivity from the offsets it reads with
+# malloc and reports a failed one as an error). The .vtp files whose counts or headers
+# claim more memory than exists run here too: the reader refuses them before VTK would
+# allocate (ASan's operator new reports such a request instead of throwing); under ASan the readers run in the
 # test's own process (io/src/parse_in_child.cpp).
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=1:handle_segv=0:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$root/scripts/ubsan-suppressions.txt"

@@ -1,5 +1,6 @@
 #include "vtp_precheck.h"
 
+#include <vtkAbstractArray.h>
 #include <vtkNew.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
@@ -10,7 +11,6 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
-#include <utility>
 #include <vector>
 
 namespace blayer::detail {
@@ -36,11 +36,10 @@ int base64_value(char c) {
 // base64 streams).
 class DataBytes {
  public:
-  DataBytes(std::string_view file, std::size_t pos, bool base64)
-      : file_(file), pos_(pos), base64_(base64), run_end_(std::min(pos, file.size())) {
-    if (base64_)
-      while (run_end_ < file_.size() && (base64_value(file_[run_end_]) >= 0 || file_[run_end_] == '=')) ++run_end_;
-  }
+  // run_end: for base64, where the run of base64 characters holding the data ends
+  // (base64_run_end); ignored for raw data.
+  DataBytes(std::string_view file, std::size_t pos, bool base64, std::size_t run_end)
+      : file_(file), pos_(pos), base64_(base64), run_end_(run_end) {}
 
   // The next n bytes, or nullopt when the file ends first or a character is not base64.
   std::optional<std::string> read(std::size_t n) {
@@ -85,16 +84,24 @@ class DataBytes {
   std::string_view file_;
   std::size_t pos_;
   bool base64_;
-  std::size_t run_end_;  // base64: where the run of base64 characters from the start ends
+  std::size_t run_end_;
   std::string pending_;
 };
 
+// Where the run of base64 characters (and '=' padding) from pos ends.
+std::size_t base64_run_end(std::string_view file, std::size_t pos) {
+  std::size_t end = std::min(pos, file.size());
+  while (end < file.size() && (base64_value(file[end]) >= 0 || file[end] == '=')) ++end;
+  return end;
+}
+
 // How the file's header words are stored (the VTKFile element's attributes).
 struct HeaderFormat {
-  bool compressed = false;
   std::size_t word_bytes = 4;
   bool big_endian = false;
 };
+
+constexpr const char* kAllowance = " (64 times the file's size plus 2 GiB)";
 
 std::uint64_t word_at(const std::string& bytes, std::size_t i, const HeaderFormat& f) {
   std::uint64_t v = 0;
@@ -129,22 +136,22 @@ std::string named(vtkXMLDataElement& e) {
   return std::string(e.GetName() ? e.GetName() : "element") + (name ? " \"" + std::string(name) + "\"" : " (no Name)");
 }
 
-// The claim of one compressed array's header that the file cannot back, or "".
-std::string header_claim_problem(DataBytes data, const HeaderFormat& f, double block_allowed,
-                                    const std::string& array) {
+// What one compressed array's header claims that the file cannot back ("claims ..."),
+// or "".
+std::string header_claim(DataBytes& data, const HeaderFormat& f, double block_allowed) {
   const std::optional<std::string> head = data.read(3 * f.word_bytes);
-  if (!head) return "the compressed-data header of " + array + " is cut short or not base64";
+  if (!head) return "is cut short or not base64";
   const std::uint64_t blocks = word_at(*head, 0, f), block = word_at(*head, 1, f), last = word_at(*head, 2, f);
   std::ostringstream why;
   const double table = static_cast<double>(blocks) * static_cast<double>(f.word_bytes);
   if (table > data.bytes_left()) {
-    why << "the compressed-data header of " << array << " claims " << blocks << " blocks, a table of "
+    why << "claims " << blocks << " blocks, a table of "
         << bytes_text(table) << " bytes, where the file holds " << bytes_text(data.bytes_left()) << " more bytes";
     return why.str();
   }
   if (static_cast<double>(block) > block_allowed || static_cast<double>(last) > block_allowed) {
-    why << "the compressed-data header of " << array << " claims blocks of " << std::max(block, last)
-        << " bytes decompressed, more than " << bytes_text(block_allowed) << " (64 times the file's size plus 2 GiB)";
+    why << "claims blocks of " << std::max(block, last)
+        << " bytes decompressed, more than " << bytes_text(block_allowed) << kAllowance;
     return why.str();
   }
   // VTK divides by the block size, and finds the block of an offset as offset / size
@@ -152,24 +159,24 @@ std::string header_claim_problem(DataBytes data, const HeaderFormat& f, double b
   // than the others, or a last block without blocks makes it divide by zero or read
   // past its table of blocks.
   if (blocks == 0 && last != 0) {
-    why << "the compressed-data header of " << array << " claims 0 blocks but a last block of " << last << " bytes";
+    why << "claims 0 blocks but a last block of " << last << " bytes";
     return why.str();
   }
   if (blocks > 0 && block == 0) {
-    why << "the compressed-data header of " << array << " claims " << blocks << " blocks of 0 bytes";
+    why << "claims " << blocks << " blocks of 0 bytes";
     return why.str();
   }
   if (last > block) {
-    why << "the compressed-data header of " << array << " claims a last block of " << last
+    why << "claims a last block of " << last
         << " bytes, larger than its blocks of " << block << " bytes";
     return why.str();
   }
   const std::optional<std::string> sizes = data.read(static_cast<std::size_t>(table));
-  if (!sizes) return "the compressed-data header of " + array + " is cut short or not base64";
+  if (!sizes) return "is cut short or not base64";
   double compressed = 0;
   for (std::uint64_t i = 0; i < blocks; ++i) compressed += static_cast<double>(word_at(*sizes, i, f));
   if (compressed > data.bytes_left()) {
-    why << "the compressed-data header of " << array << " claims " << bytes_text(compressed)
+    why << "claims " << bytes_text(compressed)
         << " bytes of compressed blocks, where the file holds " << bytes_text(data.bytes_left()) << " more bytes";
     return why.str();
   }
@@ -190,19 +197,14 @@ std::string check_points(vtkXMLDataElement& points) {
 
 std::string check_compressed_header(DataBytes data, const HeaderFormat& f, double block_allowed,
                                     const std::string& array) {
-  const std::string why = header_claim_problem(std::move(data), f, block_allowed, array);
-  return why.empty() ? why : why + " (a corrupt header)";
+  const std::string claim = header_claim(data, f, block_allowed);
+  return claim.empty() ? claim : "the compressed-data header of " + array + " " + claim + " (a corrupt header)";
 }
 
 // Bytes per value of a DataArray's type attribute (1 when unknown: the least any takes).
 double value_bytes(vtkXMLDataElement& a) {
-  const char* type = a.GetAttribute("type");
-  if (!type) return 1;
-  const std::string t = type;
-  if (t == "Int16" || t == "UInt16") return 2;
-  if (t == "Int32" || t == "UInt32" || t == "Float32") return 4;
-  if (t == "Int64" || t == "UInt64" || t == "Float64") return 8;
-  return 1;
+  int type = 0;
+  return a.GetWordTypeAttribute("type", type) ? std::max(vtkAbstractArray::GetDataTypeSize(type), 1) : 1;
 }
 
 // What the element counts make VTK allocate before it reads any data: the points and
@@ -229,7 +231,7 @@ std::string count_problem(vtkXMLDataElement& root, double allowed) {
       const double bytes = of_points ? 12.0 * static_cast<double>(n) : 4.0 * (static_cast<double>(n) + 1);
       if (bytes > allowed) {
         why << "a piece claims " << count << "=" << n << ", " << bytes_text(bytes) << " bytes or more, more than "
-            << bytes_text(allowed) << " (64 times the file's size plus 2 GiB)";
+            << bytes_text(allowed) << kAllowance;
         return why.str();
       }
     }
@@ -249,7 +251,7 @@ std::string count_problem(vtkXMLDataElement& root, double allowed) {
         if (bytes > allowed) {
           why << named(a) << " of " << components << " components per " << (per_point ? "point" : "cell")
               << " needs " << bytes_text(bytes) << " bytes, more than " << bytes_text(allowed)
-              << " (64 times the file's size plus 2 GiB)";
+              << kAllowance;
           return why.str();
         }
       }
@@ -267,9 +269,11 @@ vtkXMLDataElement* find_element(vtkXMLDataElement& e, const char* name) {
 
 struct Walk {
   std::string_view file;
+  bool compressed = false;
   HeaderFormat format;
-  vtkTypeInt64 appended_at = 0;  // where the appended data start (0 without them)
+  std::size_t appended_at = 0;   // where the appended data start (0 without them)
   bool appended_base64 = true;
+  std::size_t appended_run_end = 0;  // base64: where their run of base64 characters ends
   double block_allowed = 0;
 
   // VTK reads an element that has an offset attribute from the appended data (an offset
@@ -279,17 +283,17 @@ struct Walk {
     if (e.GetAttribute("offset")) {
       vtkTypeInt64 offset = 0;
       e.GetScalarAttribute("offset", offset);
-      const std::size_t start = std::min(static_cast<std::size_t>(std::max<vtkTypeInt64>(appended_at, 0)), file.size());
-      if (offset < 0 || static_cast<std::uint64_t>(offset) > file.size() - start)
+      if (offset < 0 || static_cast<std::uint64_t>(offset) > file.size() - appended_at)
         return named(e) + " has an offset of " + std::to_string(offset) + " outside the file";
-      return check_compressed_header(DataBytes(file, start + static_cast<std::size_t>(offset), appended_base64),
-                                     format, block_allowed, named(e));
+      const std::size_t at = appended_at + static_cast<std::size_t>(offset);
+      const std::size_t run_end = at <= appended_run_end ? appended_run_end : base64_run_end(file, at);
+      return check_compressed_header(DataBytes(file, at, appended_base64, run_end), format, block_allowed, named(e));
     }
     const char* how = e.GetAttribute("format");
-    if (how && std::strcmp(how, "binary") == 0)
-      return check_compressed_header(DataBytes(file, inline_data_position(e, file), true), format, block_allowed,
-                                     named(e));
-    return "";
+    if (!how || std::strcmp(how, "binary") != 0) return "";
+    const std::size_t at = inline_data_position(e, file);
+    return check_compressed_header(DataBytes(file, at, true, base64_run_end(file, at)), format, block_allowed,
+                                   named(e));
   }
 
   std::string element(vtkXMLDataElement& e) const {
@@ -298,7 +302,7 @@ struct Walk {
       std::string why = check_points(e);
       if (!why.empty()) return why;
     }
-    if (format.compressed) {
+    if (compressed) {
       std::string why = array(e);
       if (!why.empty()) return why;
     }
@@ -316,25 +320,29 @@ std::string vtp_precheck_problem(std::string_view bytes) {
   std::istringstream stream{std::string(bytes)};
   vtkNew<vtkXMLDataParser> parser;
   parser->SetStream(&stream);
-  if (!parser->Parse() || !parser->GetRootElement()) return "";  // VTK's reader says why
+  // A file whose XML does not parse: the parser's error (the caller's captured VTK
+  // messages) says why.
+  if (!parser->Parse() || !parser->GetRootElement()) return "";
   vtkXMLDataElement& root = *parser->GetRootElement();
-  const std::string counts = count_problem(root, vtp_decoded_bytes_allowed(bytes.size()));
-  if (!counts.empty()) return counts;
   Walk walk;
   walk.file = bytes;
   walk.block_allowed = vtp_decoded_bytes_allowed(bytes.size());
+  const std::string counts = count_problem(root, walk.block_allowed);
+  if (!counts.empty()) return counts;
   const char* compressor = root.GetAttribute("compressor");
-  walk.format.compressed = compressor && *compressor;
+  walk.compressed = compressor && *compressor;
   const char* header_type = root.GetAttribute("header_type");
   walk.format.word_bytes = header_type && std::strcmp(header_type, "UInt64") == 0 ? 8 : 4;
   const char* order = root.GetAttribute("byte_order");
   walk.format.big_endian = order && std::strcmp(order, "BigEndian") == 0;
-  walk.appended_at = parser->GetAppendedDataPosition();
+  walk.appended_at =
+      std::min(static_cast<std::size_t>(std::max<vtkTypeInt64>(parser->GetAppendedDataPosition(), 0)), bytes.size());
   // VTK reads appended data as base64 unless their encoding is "raw".
   if (vtkXMLDataElement* appended = find_element(root, "AppendedData")) {
     const char* encoding = appended->GetAttribute("encoding");
     walk.appended_base64 = !(encoding && std::strcmp(encoding, "raw") == 0);
   }
+  walk.appended_run_end = base64_run_end(bytes, walk.appended_at);
   return walk.element(root);
 }
 

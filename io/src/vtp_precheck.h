@@ -30,8 +30,9 @@ double vtp_decoded_bytes_allowed(std::size_t file_bytes);
 
 // "" when the element counts fit the allowance (the points and the point- and cell-data
 // arrays they size), the points' arrays have 3 components and every compressed-data
-// header of the file claims what the file can hold (or the XML does not parse: VTK's reader then says
-// why); else the first problem, naming its array. A header that cannot be decoded (not
+// header of the file claims what the file can hold; "" also when the XML does not parse
+// (VTK's parser reports that through its output window, which the caller captures);
+// else the first problem, naming its array or count. A header that cannot be decoded (not
 // base64, or cut short) is reported too: VTK could not read its array either.
 // Uncompressed arrays' headers are not checked: they only bound a copy into an array
 // VTK sized from the element counts.

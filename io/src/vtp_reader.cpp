@@ -1,7 +1,10 @@
 // VTK XML PolyData (.vtp), through VTK's reader (the format has too many encodings to
 // parse by hand: ascii, base64, appended raw, four compressors), run in a child process
 // (parse_in_child.h): VTK trusts the counts and compressed-block headers of the file,
-// and a corrupt one makes it allocate exabytes or read out of bounds.
+// and a corrupt one makes it allocate exabytes or read out of bounds. The checks of
+// vtp_precheck.h refuse those claims first; the child and its address-space limit
+// remain for what they cannot see (a crash inside VTK, the connectivity VTK sizes from
+// the offsets it reads, several arrays that together exceed the allowance).
 //
 // VTK reports problems (its XML parser's included) through the global output window,
 // which would print them before blayer's own "error:" line and does not always set the
@@ -87,9 +90,9 @@ class CapturedVtkErrors {
 };
 
 // The reader's process may map at most what it holds now (the first field of
-// /proc/self/statm, in pages) plus what vtp_decoded_bytes_allowed grants: a corrupt
-// count that claims gigabytes then fails at once with bad_alloc instead of making the
-// system zero gigabytes of pages. Not under AddressSanitizer, whose shadow memory
+// /proc/self/statm, in pages) plus what vtp_decoded_bytes_allowed grants: what the
+// prechecks cannot see (arrays sized from data, several arrays together) then fails at
+// once with bad_alloc instead of making the system zero gigabytes of pages. Not under AddressSanitizer, whose shadow memory
 // reserves terabytes of address space.
 void limit_address_space(std::size_t file_bytes) {
   if (kAddressSanitizer) return;
@@ -124,8 +127,7 @@ PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
   try {
     reader->Update();
   } catch (const std::bad_alloc&) {
-    // VTK allocates what the file's counts and compressed-block headers claim; a corrupt
-    // one can claim more memory than exists.
+    // What the prechecks cannot see (above) can still claim more memory than exists.
     fail_at(name, 0, "cannot parse the .vtp file (it claims more data than memory can hold: a corrupt count or "
                      "data block header)");
   }
