@@ -27,8 +27,9 @@
 //     as a wall boundary face in layer 0;
 //   side faces (the quads and triangles over the wall edges): against the new cell of
 //     the edge's other triangle, or as boundary faces on open wall edges; where the
-//     wall edge's own non-orthogonality nearly reaches the limit (thin CAD triangles),
-//     the face's limit is widened to twice the wall's lean
+//     wall edge's own non-orthogonality exceeds acos(2 cos limit) (thin CAD triangles
+//     at the default limit, many more at a low one), the face's limit is widened to
+//     twice the wall's lean
 //     (inherited_non_orthogonality_limit_deg), so that no column is ended for the
 //     wall's geometry, and never to checkMesh's error;
 //   top face (the new front triangle): as a boundary face, the layers' envelope, until

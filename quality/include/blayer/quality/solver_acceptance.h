@@ -128,9 +128,9 @@ double wall_edge_non_orthogonality_deg(const std::array<Vec3, 3>& f, const std::
 // larger of the user's limit and the angle whose cosine is half the inherited one (the
 // face may lean twice as far towards its plane as the wall's own, so that a column is
 // never ended for the wall's geometry and can still turn), but never an angle whose
-// cosine is kMinNonOrthogonalityCosine or less. The widening matters only where the
-// wall's own angle is within a few hundredths of a degree of the default limit
-// (89.99). A limit of 0 stays off.
+// cosine is kMinNonOrthogonalityCosine or less. It widens the limit L where the wall's
+// own angle exceeds acos(2 cos L): 89.98 degrees for the default 89.99, 46.8 for 70.
+// A limit of 0 stays off.
 double inherited_non_orthogonality_limit_deg(double limit_deg, double inherited_deg);
 
 // checkMesh fails a face whose non-orthogonality cosine is 1e-15 or less; a cosine is
