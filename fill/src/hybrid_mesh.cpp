@@ -23,12 +23,7 @@ std::vector<std::int64_t> append_fill(const FillResult& fill, const std::vector<
     to_mesh[i] = static_cast<std::int64_t>(mesh->points.size());
     mesh->points.push_back(fill.tets.points[i]);
   }
-  // Layer cells are region 0; the pyramids capping the quad tops of fan strips
-  // (fill_envelope.h: "layer" -1) belong to the fill, like the tets.
-  const DataArray* layer = mesh->find_cell_array("layer");
-  std::vector<double> region_values;
-  for (std::size_t c = 0; c < mesh->n_cells(); ++c)
-    region_values.push_back(layer && layer->values[c] < 0.0 ? 1.0 : 0.0);
+  const std::size_t n_layer_cells = mesh->n_cells();
   for (std::size_t c = 0; c < fill.tets.n_cells(); ++c) {
     BLAYER_ASSERT(fill.tets.cell_types[c] == CellType::kTet);
     std::int64_t nodes[4];
@@ -38,8 +33,13 @@ std::vector<std::int64_t> append_fill(const FillResult& fill, const std::vector<
   for (DataArray& a : mesh->point_data) a.values.resize(mesh->points.size() * a.n_components, 0.0);
   for (DataArray& a : mesh->cell_data)
     a.values.resize(mesh->n_cells() * a.n_components, a.name == "layer" ? -1.0 : 0.0);
-  region_values.resize(mesh->n_cells(), 1.0);
-  mesh->cell_data.push_back({"region", 1, true, std::move(region_values)});
+  // Layer cells are region 0; the tets and the pyramids capping the quad tops of fan
+  // strips (fill_envelope.h: "layer" -1) belong to the fill.
+  const DataArray* layer = mesh->find_cell_array("layer");
+  std::vector<double> region(mesh->n_cells());
+  for (std::size_t c = 0; c < region.size(); ++c)
+    region[c] = c >= n_layer_cells || (layer && layer->values[c] < 0.0) ? 1.0 : 0.0;
+  mesh->cell_data.push_back({"region", 1, true, std::move(region)});
   return to_mesh;
 }
 
