@@ -140,13 +140,15 @@ void FrontChecker::build_edge_neighbours(const TriSurface& wall, const ColumnLay
     edge_neighbour_[sf] = g;
     edge_neighbour_[sg] = f;
     side_slot_[sf] = side_slot_[sg] = std::min(sf, sg);  // the smaller triangle's
-    const int owner = std::min(sf, sg) / 3, other = owner == f ? g : f;
+    if (!(limits_.max_non_orthogonality_deg > 0.0)) continue;
+    // The angle is the same whichever triangle comes first (normal and centre line flip
+    // together).
     auto corners = [&](int t) {
       const Triangle& w = wall.triangles[t];
       return std::array<Vec3, 3>{wall.points[w[0]], wall.points[w[1]], wall.points[w[2]]};
     };
-    const double inherited = wall_edge_non_orthogonality_deg(
-        corners(owner), corners(other), wall.points[wall_point_[edge.lo]], wall.points[wall_point_[edge.hi]]);
+    const double inherited = wall_edge_non_orthogonality_deg(corners(f), corners(g), layout.front.points[edge.lo],
+                                                             layout.front.points[edge.hi]);
     side_non_orth_limit_[std::min(sf, sg)] =
         inherited_non_orthogonality_limit_deg(limits_.max_non_orthogonality_deg, inherited);
   }
