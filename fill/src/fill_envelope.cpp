@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "blayer/core/triangle_ids.h"
 #include "blayer/io/mesh_faces.h"
 #include "blayer/quality/cell_validity.h"
 
@@ -60,7 +61,7 @@ FillEnvelope fill_envelope(const TriSurface& envelope, const std::vector<std::in
   std::vector<Triangle> tris;
   for (const Triangle& t : envelope.triangles) {
     const std::int64_t a = envelope_point_ids[t[0]], b = envelope_point_ids[t[1]], c = envelope_point_ids[t[2]];
-    if (a == b || b == c || c == a) continue;
+    if (names_a_point_twice({a, b, c})) continue;
     triangle_of.emplace(sorted_triangle(a, b, c), static_cast<int>(tris.size()));
     tris.push_back({index_of[a], index_of[b], index_of[c]});
   }

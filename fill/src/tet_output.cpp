@@ -6,24 +6,19 @@
 
 #include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
+#include "blayer/core/triangle_ids.h"
 
 namespace blayer::fill_detail {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-using FaceKey = std::array<std::int64_t, 3>;  // sorted point indices
+using FaceKey = TriangleKey;
 
 struct FaceRef {
   FaceKey key;
   std::int64_t tet;
 };
-
-FaceKey sorted_key(std::int64_t a, std::int64_t b, std::int64_t c) {
-  FaceKey k{a, b, c};
-  std::sort(k.begin(), k.end());
-  return k;
-}
 
 // Parity of the permutation that takes `nodes` to `order`.
 bool even_permutation(const std::int64_t* nodes, const std::array<std::int64_t, 4>& order) {
@@ -102,7 +97,7 @@ std::vector<FaceRef> single_faces(const std::vector<std::int64_t>& conn) {
   faces.reserve(4 * static_cast<std::size_t>(n_tets));
   static const int kOpp[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
   for (std::int64_t t = 0; t < n_tets; ++t)
-    for (const auto& f : kOpp) faces.push_back({sorted_key(conn[4 * t + f[0]], conn[4 * t + f[1]], conn[4 * t + f[2]]), t});
+    for (const auto& f : kOpp) faces.push_back({sorted_triangle(conn[4 * t + f[0]], conn[4 * t + f[1]], conn[4 * t + f[2]]), t});
   std::sort(faces.begin(), faces.end(), [](const FaceRef& a, const FaceRef& b) { return a.key < b.key; });
   std::vector<FaceRef> single;
   for (std::size_t i = 0; i < faces.size();) {
@@ -170,7 +165,7 @@ void check_conformity(const FillResult& result) {
   std::vector<std::pair<FaceKey, std::size_t>> bnd;
   for (std::size_t b = 0; b < result.boundary.triangles.size(); ++b) {
     const Triangle& t = result.boundary.triangles[b];
-    bnd.push_back({sorted_key(t[0], t[1], t[2]), b});
+    bnd.push_back({sorted_triangle(t[0], t[1], t[2]), b});
   }
   std::sort(bnd.begin(), bnd.end());
   std::size_t n_missing = 0;

@@ -144,12 +144,6 @@ MeshFaces build_mesh_faces(const VolumeMesh& mesh) {
   return out;
 }
 
-TriangleKey sorted_triangle(std::int64_t a, std::int64_t b, std::int64_t c) {
-  TriangleKey k{a, b, c};
-  std::sort(k.begin(), k.end());
-  return k;
-}
-
 std::array<TriangleKey, 2> quad_halves(const std::array<std::int64_t, 4>& q, int d) {
   return {sorted_triangle(q[d], q[d + 1], q[d + 2]), sorted_triangle(q[d + 2], q[(d + 3) % 4], q[d])};
 }

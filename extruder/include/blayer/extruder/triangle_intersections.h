@@ -11,15 +11,10 @@
 #include <utility>
 #include <vector>
 
+#include "blayer/core/triangle_ids.h"
 #include "blayer/core/vec3.h"
 
 namespace blayer {
-
-using IndexedTriangle = std::array<std::int64_t, 3>;
-
-// A triangle of a soup that names one id twice: a segment, not a face (a fan strip's
-// half where the fan did not grow).
-inline bool names_a_point_twice(const IndexedTriangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
 
 // Closed segment pq against closed triangle abc, including the coplanar case (decided in
 // the projection that drops the dominant axis of the triangle's normal). The triangle

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "blayer/core/triangle_ids.h"
 #include "blayer/core/volume_mesh.h"
 
 namespace blayer {
@@ -49,11 +50,6 @@ struct CellFaceTable {
 const CellFaceTable& cell_face_table(CellType t);
 
 MeshFaces build_mesh_faces(const VolumeMesh& mesh);
-
-// A triangle's nodes in increasing order: the key under which a boundary triangle is
-// found whichever way round it was listed.
-using TriangleKey = std::array<std::int64_t, 3>;
-TriangleKey sorted_triangle(std::int64_t a, std::int64_t b, std::int64_t c);
 
 // The two triangles that quad face q splits into along diagonal d (0: q0-q2, 1: q1-q3;
 // no other value), as sorted triangles: a quad of the mesh (the top of a fan strip)
