@@ -1,5 +1,7 @@
 #include "blayer/quality/layer_fidelity.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -196,6 +198,47 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
   for (const auto& s : starts) fans = fans || s.size() > 1;
   if (fans) own_triangles = first_point_triangles(mesh, wall);
   const detail::NearestTriangleTree tree(wall);
+  // Every wall point's columns, measured in parallel (follow_column and the nearest-point
+  // queries are most of a report's time), then counted in point order, so the figures
+  // do not depend on the schedule.
+  struct PointColumns {
+    std::vector<ColumnFidelity> columns;  // one per column leaving the point, as firsts
+    int branching = 0;
+  };
+  std::vector<PointColumns> measured(n_wall);
+  tbb::parallel_for(std::size_t(0), n_wall, [&](std::size_t w) {
+    if (incident[w].empty()) return;
+    // A point without a column edge off the wall has one column, without layers.
+    const std::size_t n_firsts = std::max<std::size_t>(1, starts[w].size());
+    measured[w].columns.resize(n_firsts);
+    for (std::size_t i = 0; i < starts[w].size(); ++i) {
+      const std::int64_t q = starts[w][i];
+      ColumnFidelity& c = measured[w].columns[i];
+      bool branching = false;
+      const std::vector<std::int64_t> path = follow_column(static_cast<std::int64_t>(w), q, mesh, nb, n_wall, &branching);
+      measured[w].branching += branching ? 1 : 0;
+      // The planes: all the point's triangles, or with a fan the column's own.
+      const std::vector<int>* planes = &incident[w];
+      if (starts[w].size() > 1) {
+        const auto it = own_triangles.find(q);
+        if (it != own_triangles.end()) planes = &it->second;
+      }
+      auto height_planes = [&](const Vec3& p) {
+        double h = std::numeric_limits<double>::infinity();
+        for (int t : *planes) h = std::min(h, dot(p - wall.points[wall.triangles[t][0]], unit_normal[t]));
+        return h;
+      };
+      c.layers = static_cast<int>(path.size());
+      c.top_point = path.back();
+      const Vec3& first = mesh.points[path.front()];
+      const Vec3& top = mesh.points[path.back()];
+      c.first_height_planes = height_planes(first);
+      c.first_distance = tree.nearest(first).distance;
+      c.top_height_planes = height_planes(top);
+      c.top_distance = tree.nearest(top).distance;
+    }
+    if (starts[w].empty()) measured[w].columns[0].top_point = static_cast<std::int64_t>(w);
+  });
   LayerFidelity f;
   f.columns.resize(n_wall);
   std::vector<double> first_planes, first_distance, top_planes, top_distance;
@@ -208,35 +251,12 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
       continue;
     }
     if (starts[w].size() > 1) ++f.n_fan_points;
-    // A point without a column edge off the wall has one column, without layers.
-    const std::vector<std::int64_t> firsts = starts[w].empty() ? std::vector<std::int64_t>{-1} : starts[w];
-    for (std::size_t i = 0; i < firsts.size(); ++i) {
-      ColumnFidelity c;
+    f.n_branching += measured[w].branching;
+    const std::vector<ColumnFidelity>& columns = measured[w].columns;
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      const ColumnFidelity& c = columns[i];
       ++f.n_columns;
-      if (firsts[i] >= 0) {
-        bool branching = false;
-        const std::vector<std::int64_t> path =
-            follow_column(static_cast<std::int64_t>(w), firsts[i], mesh, nb, n_wall, &branching);
-        f.n_branching += branching ? 1 : 0;
-        // The planes: all the point's triangles, or with a fan the column's own.
-        const std::vector<int>* planes = &incident[w];
-        if (firsts.size() > 1) {
-          const auto it = own_triangles.find(firsts[i]);
-          if (it != own_triangles.end()) planes = &it->second;
-        }
-        auto height_planes = [&](const Vec3& p) {
-          double h = std::numeric_limits<double>::infinity();
-          for (int t : *planes) h = std::min(h, dot(p - wall.points[wall.triangles[t][0]], unit_normal[t]));
-          return h;
-        };
-        c.layers = static_cast<int>(path.size());
-        c.top_point = path.back();
-        const Vec3& first = mesh.points[path.front()];
-        const Vec3& top = mesh.points[path.back()];
-        c.first_height_planes = height_planes(first);
-        c.first_distance = tree.nearest(first).distance;
-        c.top_height_planes = height_planes(top);
-        c.top_distance = tree.nearest(top).distance;
+      if (!starts[w].empty()) {
         ++f.n_grown;
         const double rp = c.first_height_planes / h1, rd = c.first_distance / h1;
         first_planes.push_back(rp);
@@ -245,8 +265,6 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
         within1_distance += std::fabs(rd - 1.0) <= 0.01;
         within10_planes += std::fabs(rp - 1.0) <= 0.1;
         within10_distance += std::fabs(rd - 1.0) <= 0.1;
-      } else {
-        c.top_point = static_cast<std::int64_t>(w);
       }
       if (c.layers >= targets.layers) ++f.n_complete;
       top_planes.push_back(c.top_height_planes / total);
