@@ -12,8 +12,9 @@
 //
 // Every encoding writes the same vtkUnstructuredGrid (read back from a file written
 // by write_vtu, so it holds exactly the arrays write_vtu hands to VTK), which isolates
-// the encoding from the conversion of blayer's arrays; write_vtu itself is timed at
-// the end on the generated mesh. Runs are interleaved round-robin over the encodings so that load from other
+// the encoding from the conversion of blayer's arrays; write_vtu itself (blayer's own
+// writer of the default encoding, blocks compressed in parallel) is timed at the end
+// on the generated mesh. Runs are interleaved round-robin over the encodings so that load from other
 // processes spreads over all of them; the fastest of `repeats` runs is reported (ASCII
 // runs once: it is the slowest by far). Ratios are against the appended raw LZ4 layout
 // blayer wrote before, which is not well-formed XML.

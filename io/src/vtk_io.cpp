@@ -6,24 +6,22 @@
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
-#include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
-#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridReader.h>
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridReader.h>
-#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <filesystem>
 
 #include "blayer/core/errors.h"
 #include "blayer/io/atomic_file.h"
+#include "vtu_writer.h"
 
 namespace blayer {
 
@@ -125,32 +123,11 @@ void copy_arrays(vtkFieldData* from, std::vector<DataArray>* to, const std::vect
 }  // namespace
 
 void write_vtu(const VolumeMesh& mesh, const std::string& path, const VtkWriteOptions& options) {
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  grid->SetPoints(to_vtk_points(mesh.points));
-  // Offsets and connectivity are shared with VTK without a copy (same 64-bit layout).
-  static_assert(sizeof(vtkIdType) == sizeof(std::int64_t), "vtkIdType must be 64-bit");
-  vtkNew<vtkIdTypeArray> offsets, conn;
-  offsets->SetArray(reinterpret_cast<vtkIdType*>(const_cast<std::int64_t*>(mesh.offsets.data())),
-                    static_cast<vtkIdType>(mesh.offsets.size()), /*save=*/1);
-  conn->SetArray(reinterpret_cast<vtkIdType*>(const_cast<std::int64_t*>(mesh.connectivity.data())),
-                 static_cast<vtkIdType>(mesh.connectivity.size()), /*save=*/1);
-  vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, conn);
-  vtkNew<vtkUnsignedCharArray> types;
-  types->SetNumberOfValues(static_cast<vtkIdType>(mesh.cell_types.size()));
-  for (std::size_t i = 0; i < mesh.cell_types.size(); ++i)
-    types->SetValue(static_cast<vtkIdType>(i), static_cast<unsigned char>(mesh.cell_types[i]));
-  grid->SetCells(types, cells);
-  for (const DataArray& a : mesh.point_data) {
-    check_size(a, mesh.points.size(), "points", path);
-    grid->GetPointData()->AddArray(to_vtk(a));
-  }
-  for (const DataArray& a : mesh.cell_data) {
-    check_size(a, mesh.n_cells(), "cells", path);
-    grid->GetCellData()->AddArray(to_vtk(a));
-  }
-  vtkNew<vtkXMLUnstructuredGridWriter> w;
-  write_atomically(w.Get(), grid, path, options);
+  for (const DataArray& a : mesh.point_data) check_size(a, mesh.points.size(), "points", path);
+  for (const DataArray& a : mesh.cell_data) check_size(a, mesh.n_cells(), "cells", path);
+  AtomicOutputs file;
+  detail::write_vtu_blocks(mesh, file.stage(path), options.compressor);
+  file.commit();
 }
 
 void write_vtp(const TriSurface& s, const std::vector<DataArray>& point_data, const std::vector<DataArray>& cell_data,

@@ -23,6 +23,12 @@
 // level 1 for files at most 1.5 % smaller, so the level is fixed at 1. Reading is slower
 // too (base64 and zlib): 5.0 s for the ONERA M6 file against 0.6 s before, 3.5 s with LZ4.
 //
+// .vtu files are written by blayer itself (io/src/vtu_writer.h): the same text as VTK's
+// writer with these settings, array for array, but with the blocks of each array
+// compressed in parallel. On 2 threads, bench/io/vtk_write_bench 200 10 (800k prisms)
+// measured write_vtu at 0.54 s (0.92 s CPU) against 0.94 s for VTK's writer. .vtp
+// surfaces, far smaller, are written by VTK.
+//
 // Every writer goes through AtomicOutputs: the target appears complete or not at all.
 #pragma once
 

@@ -1,0 +1,246 @@
+#include "vtu_writer.h"
+
+#include <tbb/parallel_for.h>
+#include <vtkDataCompressor.h>
+#include <vtkLZ4DataCompressor.h>
+#include <vtkSmartPointer.h>
+#include <vtkZLibDataCompressor.h>
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <vector>
+
+#include "blayer/core/errors.h"
+
+namespace blayer {
+namespace detail {
+
+namespace {
+
+// VTK's block size: 32 KiB of values before compression.
+constexpr std::size_t kBlockBytes = 32768;
+// Blocks converted and compressed together (2 MiB of values): enough work per run for
+// the threads, little memory.
+constexpr std::size_t kRunBlocks = 64;
+
+// One DataArray: its XML attributes and how its values become bytes.
+struct ArraySource {
+  std::string name;
+  const char* type;  // VTK's type name
+  int n_components;
+  int value_bytes;
+  std::size_t n_values;  // scalar values (tuples x components)
+  // Writes values [first, first + n) as bytes of `type` in the host's order.
+  std::function<void(std::size_t first, std::size_t n, unsigned char* out)> fill;
+};
+
+template <class T, class Source>
+void convert(const Source* from, std::size_t n, unsigned char* out) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const T v = static_cast<T>(from[i]);
+    std::memcpy(out + i * sizeof(T), &v, sizeof(T));
+  }
+}
+
+ArraySource source_of(const DataArray& a) {
+  ArraySource s{a.name, "Float64", a.n_components, 8, a.values.size(), nullptr};
+  const double* v = a.values.data();
+  if (a.integer) {
+    s.type = "Int32";
+    s.value_bytes = 4;
+    s.fill = [v](std::size_t first, std::size_t n, unsigned char* out) { convert<std::int32_t>(v + first, n, out); };
+  } else if (a.single_precision) {
+    s.type = "Float32";
+    s.value_bytes = 4;
+    s.fill = [v](std::size_t first, std::size_t n, unsigned char* out) { convert<float>(v + first, n, out); };
+  } else {
+    s.fill = [v](std::size_t first, std::size_t n, unsigned char* out) { std::memcpy(out, v + first, 8 * n); };
+  }
+  return s;
+}
+
+template <class T>
+ArraySource raw_source(const std::string& name, const char* type, int n_components, const T* data, std::size_t n) {
+  return {name, type, n_components, static_cast<int>(sizeof(T)), n,
+          [data](std::size_t first, std::size_t count, unsigned char* out) {
+            std::memcpy(out, data + first, sizeof(T) * count);
+          }};
+}
+
+vtkSmartPointer<vtkDataCompressor> make_compressor(VtkCompressor c) {
+  vtkSmartPointer<vtkDataCompressor> z;
+  if (c == VtkCompressor::kLz4) {
+    z = vtkSmartPointer<vtkLZ4DataCompressor>::New();
+    z->SetCompressionLevel(5);  // VTK's default acceleration (vtk_io.cpp)
+  } else {
+    z = vtkSmartPointer<vtkZLibDataCompressor>::New();
+    z->SetCompressionLevel(1);  // the level vtk_io.h settles on
+  }
+  return z;
+}
+
+const char* compressor_name(VtkCompressor c) {
+  return c == VtkCompressor::kLz4 ? "vtkLZ4DataCompressor" : "vtkZLibDataCompressor";
+}
+
+// Base64 of a byte stream written in pieces: whole groups of three bytes as they come,
+// the 0 to 2 left over carried to the next piece, '=' padding at the end.
+class Base64Writer {
+ public:
+  explicit Base64Writer(std::ostream& out) : out_(out) {}
+  void write(const unsigned char* data, std::size_t n) {
+    text_.clear();
+    std::size_t i = 0;
+    while (carry_n_ > 0 && carry_n_ < 3 && i < n) carry_[carry_n_++] = data[i++];
+    if (carry_n_ == 3) {
+      group(carry_[0], carry_[1], carry_[2]);
+      carry_n_ = 0;
+    }
+    for (; i + 3 <= n; i += 3) group(data[i], data[i + 1], data[i + 2]);
+    while (i < n) carry_[carry_n_++] = data[i++];
+    out_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+  }
+  void finish() {
+    text_.clear();
+    if (carry_n_ > 0) {
+      const unsigned char b1 = carry_n_ > 1 ? carry_[1] : 0;
+      group(carry_[0], b1, 0);
+      text_[3] = '=';
+      if (carry_n_ == 1) text_[2] = '=';
+    }
+    carry_n_ = 0;
+    out_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+  }
+  static std::size_t length(std::size_t bytes) { return 4 * ((bytes + 2) / 3); }
+
+ private:
+  void group(unsigned char a, unsigned char b, unsigned char c) {
+    static const char kTable[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    text_ += kTable[a >> 2];
+    text_ += kTable[((a & 3) << 4) | (b >> 4)];
+    text_ += kTable[((b & 15) << 2) | (c >> 6)];
+    text_ += kTable[c & 63];
+  }
+  std::ostream& out_;
+  std::string text_;
+  unsigned char carry_[3];
+  int carry_n_ = 0;
+};
+
+void write_header(std::ostream& out, const std::vector<std::uint64_t>& words) {
+  Base64Writer b(out);
+  b.write(reinterpret_cast<const unsigned char*>(words.data()), 8 * words.size());
+  b.finish();
+}
+
+// The base64 text of one array: the header (placeholder first), then its blocks, run by
+// run, each run converted and compressed in parallel.
+void write_array_data(std::ostream& out, const ArraySource& a, VtkCompressor compressor) {
+  const std::size_t total = a.n_values * static_cast<std::size_t>(a.value_bytes);
+  const std::size_t n_blocks = (total + kBlockBytes - 1) / kBlockBytes;
+  const std::size_t values_per_block = kBlockBytes / static_cast<std::size_t>(a.value_bytes);
+  std::vector<std::uint64_t> header(3 + n_blocks, 0);
+  header[0] = n_blocks;
+  header[1] = kBlockBytes;
+  header[2] = total % kBlockBytes;
+  const std::streampos header_at = out.tellp();
+  write_header(out, header);
+  Base64Writer data(out);
+  std::vector<std::vector<unsigned char>> compressed(std::min(n_blocks, kRunBlocks));
+  for (std::size_t run = 0; run < n_blocks; run += kRunBlocks) {
+    const std::size_t n_run = std::min(kRunBlocks, n_blocks - run);
+    tbb::parallel_for(std::size_t(0), n_run, [&](std::size_t i) {
+      const std::size_t b = run + i;
+      const std::size_t first = b * values_per_block;
+      const std::size_t n = std::min(values_per_block, a.n_values - first);
+      thread_local std::vector<unsigned char> raw;
+      raw.resize(n * static_cast<std::size_t>(a.value_bytes));
+      a.fill(first, n, raw.data());
+      const vtkSmartPointer<vtkDataCompressor> z = make_compressor(compressor);
+      std::vector<unsigned char>& c = compressed[i];
+      c.resize(z->GetMaximumCompressionSpace(raw.size()));
+      const std::size_t size = z->Compress(raw.data(), raw.size(), c.data(), c.size());
+      if (size == 0) throw IoError("cannot compress the values of array '" + a.name + "'");
+      c.resize(size);
+    });
+    for (std::size_t i = 0; i < n_run; ++i) {
+      header[3 + run + i] = compressed[i].size();
+      data.write(compressed[i].data(), compressed[i].size());
+    }
+  }
+  data.finish();
+  const std::streampos end = out.tellp();
+  out.seekp(header_at);
+  write_header(out, header);
+  out.seekp(end);
+}
+
+std::string xml_escaped(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+void write_array(std::ostream& out, const ArraySource& a, VtkCompressor compressor) {
+  out << "        <DataArray type=\"" << a.type << "\" Name=\"" << xml_escaped(a.name) << '"';
+  if (a.n_components != 1) out << " NumberOfComponents=\"" << a.n_components << '"';
+  out << " format=\"binary\">\n          ";
+  write_array_data(out, a, compressor);
+  out << "\n        </DataArray>\n";
+}
+
+bool little_endian() {
+  const std::uint16_t one = 1;
+  unsigned char first;
+  std::memcpy(&first, &one, 1);
+  return first == 1;
+}
+
+}  // namespace
+
+void write_vtu_blocks(const VolumeMesh& mesh, const std::string& path, VtkCompressor compressor) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw IoError(path + ": cannot write the file");
+  const std::size_t n_cells = mesh.n_cells();
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\""
+      << (little_endian() ? "LittleEndian" : "BigEndian") << "\" header_type=\"UInt64\" compressor=\""
+      << compressor_name(compressor) << "\">\n"
+      << "  <UnstructuredGrid>\n"
+      << "    <Piece NumberOfPoints=\"" << mesh.points.size() << "\" NumberOfCells=\"" << n_cells << "\">\n";
+  out << "      <PointData>\n";
+  for (const DataArray& a : mesh.point_data) write_array(out, source_of(a), compressor);
+  out << "      </PointData>\n      <CellData>\n";
+  for (const DataArray& a : mesh.cell_data) write_array(out, source_of(a), compressor);
+  out << "      </CellData>\n      <Points>\n";
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 must be three packed doubles");
+  write_array(out,
+              raw_source("Points", "Float64", 3, mesh.points.empty() ? nullptr : mesh.points.data()->data(),
+                         3 * mesh.points.size()),
+              compressor);
+  out << "      </Points>\n      <Cells>\n";
+  write_array(out, raw_source("connectivity", "Int64", 1, mesh.connectivity.data(), mesh.connectivity.size()),
+              compressor);
+  // VTK's offsets are the cells' ends: mesh.offsets without its leading 0.
+  write_array(out, raw_source("offsets", "Int64", 1, mesh.offsets.data() + 1, n_cells), compressor);
+  ArraySource types{"types", "UInt8", 1, 1, n_cells, [&mesh](std::size_t first, std::size_t n, unsigned char* o) {
+                      for (std::size_t i = 0; i < n; ++i) o[i] = static_cast<unsigned char>(mesh.cell_types[first + i]);
+                    }};
+  write_array(out, types, compressor);
+  out << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  out.flush();
+  if (!out) throw IoError(path + ": cannot write the file");
+}
+
+}  // namespace detail
+}  // namespace blayer

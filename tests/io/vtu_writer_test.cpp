@@ -1,0 +1,178 @@
+// blayer writes .vtu files itself (io/src/vtu_writer.h), compressing blocks in
+// parallel. The oracle is VTK's own writer in the same data mode (inline base64,
+// 64-bit headers, the same compressor and level): every DataArray's text must be the
+// same, byte for byte, on arrays of one block, of exactly whole blocks, of several runs
+// of blocks, and empty ones, for both compressors.
+#include <gtest/gtest.h>
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "blayer/io/vtk_io.h"
+#include "mixed_mesh.h"
+#include "temp_dir.h"
+
+namespace blayer {
+namespace {
+
+using testing::TempDir;
+
+// The mesh as VTK's own writer writes it, built here independently of io/.
+void write_with_vtk(const VolumeMesh& m, const std::string& path, VtkCompressor compressor) {
+  vtkNew<vtkUnstructuredGrid> grid;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (const Vec3& p : m.points) points->InsertNextPoint(p[0], p[1], p[2]);
+  grid->SetPoints(points);
+  vtkNew<vtkIdTypeArray> offsets, conn;
+  for (std::int64_t o : m.offsets) offsets->InsertNextValue(o);
+  for (std::int64_t c : m.connectivity) conn->InsertNextValue(c);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, conn);
+  vtkNew<vtkUnsignedCharArray> types;
+  for (CellType t : m.cell_types) types->InsertNextValue(static_cast<unsigned char>(t));
+  grid->SetCells(types, cells);
+  auto add = [](const DataArray& a, vtkFieldData* to) {
+    vtkSmartPointer<vtkDataArray> arr;
+    if (a.integer) {
+      arr = vtkSmartPointer<vtkIntArray>::New();
+    } else if (a.single_precision) {
+      arr = vtkSmartPointer<vtkFloatArray>::New();
+    } else {
+      arr = vtkSmartPointer<vtkDoubleArray>::New();
+    }
+    arr->SetNumberOfComponents(a.n_components);
+    arr->SetNumberOfTuples(static_cast<vtkIdType>(a.values.size() / a.n_components));
+    for (std::size_t i = 0; i < a.values.size(); ++i) arr->SetVariantValue(static_cast<vtkIdType>(i), a.values[i]);
+    arr->SetName(a.name.c_str());
+    to->AddArray(arr);
+  };
+  for (const DataArray& a : m.point_data) add(a, grid->GetPointData());
+  for (const DataArray& a : m.cell_data) add(a, grid->GetCellData());
+  vtkNew<vtkXMLUnstructuredGridWriter> w;
+  w->SetInputData(grid);
+  w->SetFileName(path.c_str());
+  w->SetDataModeToBinary();
+  if (compressor == VtkCompressor::kLz4) {
+    w->SetCompressionLevel(5);
+    w->SetCompressorTypeToLZ4();
+  } else {
+    w->SetCompressionLevel(1);
+    w->SetCompressorTypeToZLib();
+  }
+  w->SetHeaderTypeToUInt64();
+  ASSERT_EQ(w->Write(), 1);
+}
+
+// The base64 text of every DataArray of a file, by name (VTK may follow it with
+// information keys, which are not data).
+std::map<std::string, std::string> array_texts(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const std::string s = buf.str();
+  std::map<std::string, std::string> out;
+  for (std::size_t at = s.find("<DataArray"); at != std::string::npos; at = s.find("<DataArray", at + 1)) {
+    const std::size_t name_at = s.find("Name=\"", at) + 6;
+    const std::string name = s.substr(name_at, s.find('"', name_at) - name_at);
+    std::size_t text = s.find('>', at) + 1;
+    while (std::isspace(static_cast<unsigned char>(s[text]))) ++text;
+    std::size_t end = text;
+    while (end < s.size() && !std::isspace(static_cast<unsigned char>(s[end])) && s[end] != '<') ++end;
+    out[name] = s.substr(text, end - text);
+  }
+  return out;
+}
+
+void expect_same_arrays_as_vtk(const VolumeMesh& m, VtkCompressor compressor) {
+  TempDir dir;
+  VtkWriteOptions options;
+  options.compressor = compressor;
+  write_vtu(m, dir.file("ours.vtu"), options);
+  write_with_vtk(m, dir.file("vtk.vtu"), compressor);
+  const auto ours = array_texts(dir.file("ours.vtu"));
+  const auto theirs = array_texts(dir.file("vtk.vtu"));
+  ASSERT_EQ(ours.size(), theirs.size());
+  for (const auto& [name, text] : theirs) {
+    ASSERT_TRUE(ours.count(name)) << name;
+    EXPECT_EQ(ours.at(name).size(), text.size()) << name;
+    EXPECT_TRUE(ours.at(name) == text) << "array " << name << " differs from VTK's";
+  }
+}
+
+// Stacked wedges on an n x n grid split into triangles: the connectivity of 2 n^2 L
+// wedges spans several runs of 64 blocks when 96 n^2 L bytes exceed 2 MiB.
+VolumeMesh stacked_wedges(int n, int layers) {
+  VolumeMesh m;
+  const int row = n + 1, plane = row * row;
+  for (int k = 0; k <= layers; ++k)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.points.push_back({i + 0.01 * std::sin(j), j + 0.0, 0.1 * k + 0.001 * i});
+  for (int k = 0; k < layers; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::int64_t a = k * plane + j * row + i, b = a + 1, c = a + row, d = c + 1;
+        const std::int64_t w1[6] = {a, b, d, a + plane, b + plane, d + plane};
+        const std::int64_t w2[6] = {a, d, c, a + plane, d + plane, c + plane};
+        m.add_cell(CellType::kWedge, w1);
+        m.add_cell(CellType::kWedge, w2);
+      }
+  DataArray height{"column_height", 1, false, {}};
+  for (const Vec3& p : m.points) height.values.push_back(p[2] / 3.0);
+  DataArray layer{"layer", 1, true, {}}, volume{"volume", 1, false, {}, /*single_precision=*/true};
+  for (std::size_t c = 0; c < m.n_cells(); ++c) {
+    layer.values.push_back(static_cast<double>(c / (2 * n * n)));
+    volume.values.push_back(1.0 / (1.0 + static_cast<double>(c % 7)));
+  }
+  m.point_data = {height};
+  m.cell_data = {layer, volume};
+  return m;
+}
+
+TEST(VtuWriter, ArraysOfOneBlockAreVtksOwnText) {
+  expect_same_arrays_as_vtk(testing::mixed_mesh(), VtkCompressor::kZlib);
+  expect_same_arrays_as_vtk(testing::mixed_mesh(), VtkCompressor::kLz4);
+}
+
+TEST(VtuWriter, ArraysOfSeveralRunsOfBlocksAreVtksOwnText) {
+  // 2 * 130^2 * 2 = 67,600 wedges: a connectivity of 3.2 MB, more than one run of 64
+  // blocks of 32 KiB; the points (131^2 * 3) and the offsets several blocks each.
+  const VolumeMesh m = stacked_wedges(130, 2);
+  ASSERT_GT(m.connectivity.size() * 8, 64u * 32768u);
+  expect_same_arrays_as_vtk(m, VtkCompressor::kZlib);
+  expect_same_arrays_as_vtk(m, VtkCompressor::kLz4);
+}
+
+TEST(VtuWriter, ArraysOfWholeBlocksAreVtksOwnText) {
+  // 8,192 cells: the Int32 and Float32 cell arrays fill exactly one block, whose
+  // header names a last block of 0 bytes.
+  VolumeMesh m = stacked_wedges(64, 1);
+  ASSERT_EQ(m.n_cells(), 8192u);
+  expect_same_arrays_as_vtk(m, VtkCompressor::kZlib);
+}
+
+TEST(VtuWriter, EmptyArraysAreVtksOwnText) {
+  VolumeMesh m;
+  m.point_data = {{"column_height", 1, false, {}}};
+  m.cell_data = {{"layer", 1, true, {}}};
+  expect_same_arrays_as_vtk(m, VtkCompressor::kZlib);
+}
+
+}  // namespace
+}  // namespace blayer
