@@ -101,20 +101,25 @@ std::vector<std::vector<std::int64_t>> column_starts(const std::vector<std::vect
   return starts;
 }
 
-// The wall triangles each first point stands on: those whose wall-layer wedge or
-// closure pyramid (its base on the triangle's three points) has the column edge from
-// the wall to it. With several columns at a wall point (a fan), each column's height
-// is measured above its own faces' planes.
-std::unordered_map<std::int64_t, std::vector<int>> first_point_triangles(const VolumeMesh& mesh,
-                                                                          const TriSurface& wall) {
+// The wall triangles each first point of a fan (a wall point with several columns)
+// stands on: those whose wall-layer wedge or closure pyramid (its base on the
+// triangle's three points) has the column edge from the wall to it, so that each of
+// the fan's columns is measured above its own faces' planes. Other columns use all
+// their point's triangles and need no entry.
+std::unordered_map<std::int64_t, std::vector<int>> first_point_triangles(
+    const VolumeMesh& mesh, const TriSurface& wall, const std::vector<std::vector<std::int64_t>>& starts) {
   const std::int64_t n_wall = static_cast<std::int64_t>(wall.points.size());
+  std::unordered_map<std::int64_t, std::vector<int>> out;
+  for (const std::vector<std::int64_t>& s : starts)
+    if (s.size() > 1)
+      for (std::int64_t q : s) out[q];
+  if (out.empty()) return out;
   std::map<std::array<std::int64_t, 3>, int> triangle_of;
   for (std::size_t t = 0; t < wall.triangles.size(); ++t) {
     std::array<std::int64_t, 3> k{wall.triangles[t][0], wall.triangles[t][1], wall.triangles[t][2]};
     std::sort(k.begin(), k.end());
     triangle_of[k] = static_cast<int>(t);
   }
-  std::unordered_map<std::int64_t, std::vector<int>> out;
   for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
     const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
     const bool wedge = mesh.cell_types[c] == CellType::kWedge;
@@ -122,13 +127,16 @@ std::unordered_map<std::int64_t, std::vector<int>> first_point_triangles(const V
     std::array<std::int64_t, 3> base = wedge ? std::array<std::int64_t, 3>{n[0], n[1], n[2]}
                                              : std::array<std::int64_t, 3>{n[0], n[3], n[4]};
     if (base[0] >= n_wall || base[1] >= n_wall || base[2] >= n_wall) continue;
-    std::sort(base.begin(), base.end());
-    const auto it = triangle_of.find(base);
-    if (it == triangle_of.end()) continue;
     auto add = [&](const int(*edges)[2], int count) {
       for (int e = 0; e < count; ++e) {
         const std::int64_t a = n[edges[e][0]], b = n[edges[e][1]];
-        if (a < n_wall && b >= n_wall) out[b].push_back(it->second);
+        if (a >= n_wall || b < n_wall) continue;
+        const auto fan_first = out.find(b);
+        if (fan_first == out.end()) continue;
+        std::array<std::int64_t, 3> key = base;
+        std::sort(key.begin(), key.end());
+        const auto it = triangle_of.find(key);
+        if (it != triangle_of.end()) fan_first->second.push_back(it->second);
       }
     };
     if (wedge)
@@ -193,10 +201,7 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
   }
   const auto nb = column_neighbours(mesh);
   const auto starts = column_starts(nb, n_wall);
-  std::unordered_map<std::int64_t, std::vector<int>> own_triangles;
-  bool fans = false;
-  for (const auto& s : starts) fans = fans || s.size() > 1;
-  if (fans) own_triangles = first_point_triangles(mesh, wall);
+  const std::unordered_map<std::int64_t, std::vector<int>> own_triangles = first_point_triangles(mesh, wall, starts);
   const detail::NearestTriangleTree tree(wall);
   // Every wall point's columns, measured in parallel (follow_column and the nearest-point
   // queries are most of a report's time), then counted in point order, so the figures
@@ -221,7 +226,7 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
       const std::vector<int>* planes = &incident[w];
       if (starts[w].size() > 1) {
         const auto it = own_triangles.find(q);
-        if (it != own_triangles.end()) planes = &it->second;
+        if (it != own_triangles.end() && !it->second.empty()) planes = &it->second;
       }
       auto height_planes = [&](const Vec3& p) {
         double h = std::numeric_limits<double>::infinity();
