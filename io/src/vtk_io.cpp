@@ -78,13 +78,12 @@ void set_encoding(Writer* w, const VtkWriteOptions& options) {
   // vtk_io.h), and appended base64 is no faster.
   w->SetDataModeToBinary();
   // The level is set first: SetCompressorType hands the writer's level to the new
-  // compressor. zlib level 1: higher levels cost up to 2.8 times the time for at most
-  // 1.5 % (vtk_io.h). LZ4 keeps VTK's default level 5 (acceleration 5).
+  // compressor (levels: vtu_writer.h).
   if (options.compressor == VtkCompressor::kLz4) {
-    w->SetCompressionLevel(5);
+    w->SetCompressionLevel(detail::kLz4Level);
     w->SetCompressorTypeToLZ4();
   } else {
-    w->SetCompressionLevel(1);
+    w->SetCompressionLevel(detail::kZlibLevel);
     w->SetCompressorTypeToZLib();
   }
   // 64-bit block headers: arrays of more than 4 GiB (about 500M connectivity ids) stay

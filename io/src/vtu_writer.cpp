@@ -73,10 +73,10 @@ vtkSmartPointer<vtkDataCompressor> make_compressor(VtkCompressor c) {
   vtkSmartPointer<vtkDataCompressor> z;
   if (c == VtkCompressor::kLz4) {
     z = vtkSmartPointer<vtkLZ4DataCompressor>::New();
-    z->SetCompressionLevel(5);  // VTK's default acceleration (vtk_io.cpp)
+    z->SetCompressionLevel(kLz4Level);
   } else {
     z = vtkSmartPointer<vtkZLibDataCompressor>::New();
-    z->SetCompressionLevel(1);  // the level vtk_io.h settles on
+    z->SetCompressionLevel(kZlibLevel);
   }
   return z;
 }

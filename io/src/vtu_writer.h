@@ -25,6 +25,12 @@
 namespace blayer {
 namespace detail {
 
+// The compression settings of every VTK XML file blayer writes: zlib level 1 (higher
+// levels cost up to 2.8 times the time for at most 1.5 % smaller files, vtk_io.h); LZ4
+// at VTK's default acceleration 5.
+constexpr int kZlibLevel = 1;
+constexpr int kLz4Level = 5;
+
 // Writes mesh to path (directly: the caller stages the file). Throws IoError when the
 // file cannot be written.
 void write_vtu_blocks(const VolumeMesh& mesh, const std::string& path, VtkCompressor compressor);
