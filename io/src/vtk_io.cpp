@@ -124,8 +124,11 @@ void copy_arrays(vtkFieldData* from, std::vector<DataArray>* to, const std::vect
 void write_vtu(const VolumeMesh& mesh, const std::string& path, const VtkWriteOptions& options) {
   for (const DataArray& a : mesh.point_data) check_size(a, mesh.points.size(), "points", path);
   for (const DataArray& a : mesh.cell_data) check_size(a, mesh.n_cells(), "cells", path);
+  if (mesh.offsets.size() != mesh.cell_types.size() + 1 || mesh.offsets.front() != 0 ||
+      mesh.offsets.back() != static_cast<std::int64_t>(mesh.connectivity.size()))
+    throw std::logic_error(path + ": the mesh's cell offsets do not match its cells and connectivity");
   AtomicOutputs file;
-  detail::write_vtu_blocks(mesh, file.stage(path), options.compressor);
+  detail::write_vtu_blocks(mesh, file.stage(path), path, options.compressor);
   file.commit();
 }
 

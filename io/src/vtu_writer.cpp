@@ -6,10 +6,12 @@
 #include <vtkSmartPointer.h>
 #include <vtkZLibDataCompressor.h>
 
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <locale>
 #include <vector>
 
 #include "blayer/core/errors.h"
@@ -208,9 +210,12 @@ bool little_endian() {
 
 }  // namespace
 
-void write_vtu_blocks(const VolumeMesh& mesh, const std::string& path, VtkCompressor compressor) {
+void write_vtu_blocks(const VolumeMesh& mesh, const std::string& path, const std::string& target,
+                      VtkCompressor compressor) {
+  auto failed = [&target] { return IoError(target + ": cannot write the file (" + std::strerror(errno) + ")"); };
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw IoError(path + ": cannot write the file");
+  if (!out) throw failed();
+  out.imbue(std::locale::classic());  // counts without digit grouping, whatever the global locale
   const std::size_t n_cells = mesh.n_cells();
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\""
@@ -238,8 +243,9 @@ void write_vtu_blocks(const VolumeMesh& mesh, const std::string& path, VtkCompre
                     }};
   write_array(out, types, compressor);
   out << "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-  out.flush();
-  if (!out) throw IoError(path + ": cannot write the file");
+  // Some file systems report a failed write only when the file is closed.
+  out.close();
+  if (!out) throw failed();
 }
 
 }  // namespace detail

@@ -31,9 +31,12 @@ namespace detail {
 constexpr int kZlibLevel = 1;
 constexpr int kLz4Level = 5;
 
-// Writes mesh to path (directly: the caller stages the file). Throws IoError when the
-// file cannot be written.
-void write_vtu_blocks(const VolumeMesh& mesh, const std::string& path, VtkCompressor compressor);
+// Writes mesh to `path` (directly: the caller stages the file under a temporary name;
+// errors name `target`, the file the user asked for). Throws IoError when the file
+// cannot be written or closed. Precondition: mesh.offsets has n_cells + 1 entries
+// ending at the connectivity's size (write_vtu checks it).
+void write_vtu_blocks(const VolumeMesh& mesh, const std::string& path, const std::string& target,
+                      VtkCompressor compressor);
 
 }  // namespace detail
 }  // namespace blayer
