@@ -138,7 +138,7 @@ FilledRegion fill_beyond_layers(const ParamValues& params, Side side, const std:
 // per-cell arrays are added to the mesh.
 MeshCheckReport decide_validity(VolumeMesh& mesh) {
   MeshCheckReport check = check_volume_mesh(mesh);
-  add_quality_arrays(mesh, check);
+  move_quality_arrays(mesh, &check);
   if (!check.ok())
     throw std::runtime_error("the assembled mesh failed the independent check (" +
                              std::to_string(check.totals.inverted) + " inverted, " +
@@ -148,12 +148,19 @@ MeshCheckReport decide_validity(VolumeMesh& mesh) {
   return check;
 }
 
+// The check's per-cell volumes, from the mesh's quality arrays (move_quality_arrays).
+const std::vector<double>& cell_volumes(const VolumeMesh& mesh) {
+  const DataArray* volume = mesh.find_cell_array("volume");
+  if (!volume) throw std::logic_error("the checked mesh has no volume array");
+  return volume->values;
+}
+
 nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, const MeshCheckReport& check,
-                           std::size_t n_layer_cells, const FillStats* fill, double seconds) {
+                           const VolumeMesh& mesh, std::size_t n_layer_cells, const FillStats* fill,
+                           double seconds) {
   nlohmann::json j;
   // Volumes of the layer cells and of the fill, from the check's per-cell volumes.
-  const auto volume_index = std::find(kCheckMetricNames.begin(), kCheckMetricNames.end(), std::string("volume"));
-  const std::vector<double>& volume = check.metrics[volume_index - kCheckMetricNames.begin()];
+  const std::vector<double>& volume = cell_volumes(mesh);
   double layers_volume = 0.0, fill_volume = 0.0;
   for (std::size_t c = 0; c < volume.size(); ++c) (c < n_layer_cells ? layers_volume : fill_volume) += volume[c];
   j["volume"] = {{"layers", layers_volume}, {"fill", fill_volume}};
@@ -246,8 +253,8 @@ int run_extrude_command(const ParamValues& params) {
   if (!out.boundary.empty()) write_boundary(*boundary, out.boundary_tmp, out.vtk);
   if (!out.report.empty())
     write_text_file(out.report_tmp,
-                    report_json(params, result.report, check, n_layer_cells, filled ? &filled->fill.stats : nullptr,
-                                total.seconds())
+                    report_json(params, result.report, check, result.mesh, n_layer_cells,
+                                filled ? &filled->fill.stats : nullptr, total.seconds())
                             .dump(2) +
                         "\n",
                     out.report);

@@ -23,6 +23,22 @@ void set_array(std::vector<DataArray>& arrays, DataArray a) {
   arrays.push_back(std::move(a));
 }
 
+// The validity and check_flags arrays of the cells `ids` (all cells when null), after
+// the metrics in *out.
+void append_validity_and_flags(const MeshCheckReport& r, const std::vector<std::size_t>* ids,
+                               std::vector<DataArray>* out) {
+  const std::size_t n = ids ? ids->size() : r.validity.size();
+  DataArray validity{"validity", 1, true, std::vector<double>(n)};
+  DataArray flags{"check_flags", 1, true, std::vector<double>(n)};
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t c = ids ? (*ids)[i] : i;
+    validity.values[i] = static_cast<double>(r.validity[c]);
+    flags.values[i] = r.flags[c];
+  }
+  out->push_back(std::move(validity));
+  out->push_back(std::move(flags));
+}
+
 // The quality arrays of the cells `ids` (all cells when null).
 std::vector<DataArray> quality_arrays(const MeshCheckReport& r, const std::vector<std::size_t>* ids) {
   const std::size_t n = ids ? ids->size() : r.validity.size();
@@ -33,14 +49,7 @@ std::vector<DataArray> quality_arrays(const MeshCheckReport& r, const std::vecto
     for (std::size_t i = 0; i < n; ++i) a.values[i] = r.metrics[k][id(i)];
     out.push_back(std::move(a));
   }
-  DataArray validity{"validity", 1, true, std::vector<double>(n)};
-  DataArray flags{"check_flags", 1, true, std::vector<double>(n)};
-  for (std::size_t i = 0; i < n; ++i) {
-    validity.values[i] = static_cast<double>(r.validity[id(i)]);
-    flags.values[i] = r.flags[id(i)];
-  }
-  out.push_back(std::move(validity));
-  out.push_back(std::move(flags));
+  append_validity_and_flags(r, ids, &out);
   return out;
 }
 
@@ -51,7 +60,21 @@ void add_quality_arrays(VolumeMesh& mesh, const MeshCheckReport& report) {
   for (DataArray& a : quality_arrays(report, nullptr)) set_array(mesh.cell_data, std::move(a));
 }
 
-void add_quality_arrays(VolumeMesh& mesh) { add_quality_arrays(mesh, check_volume_mesh(mesh)); }
+void move_quality_arrays(VolumeMesh& mesh, MeshCheckReport* report) {
+  require_matching(mesh, *report, "move_quality_arrays");
+  std::vector<DataArray> arrays;
+  for (std::size_t k = 0; k < kCheckMetricNames.size(); ++k) {
+    arrays.push_back(DataArray{kCheckMetricNames[k], 1, false, std::move(report->metrics[k]), true});
+    report->metrics[k] = {};
+  }
+  append_validity_and_flags(*report, nullptr, &arrays);
+  for (DataArray& a : arrays) set_array(mesh.cell_data, std::move(a));
+}
+
+void add_quality_arrays(VolumeMesh& mesh) {
+  MeshCheckReport report = check_volume_mesh(mesh);
+  move_quality_arrays(mesh, &report);
+}
 
 VolumeMesh extract_bad_cells(const VolumeMesh& mesh, const MeshCheckReport& report) {
   require_matching(mesh, report, "extract_bad_cells");

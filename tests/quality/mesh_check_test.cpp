@@ -233,5 +233,32 @@ TEST(MeshCheck, QualityArraysAreAddedOncePerName) {
   EXPECT_NEAR(m.find_cell_array("aspect_ratio")->values[0], (2.0 + std::sqrt(2.0)) / 3.0 / 0.1, kMetricTol);
 }
 
+TEST(MeshCheck, MovedQualityArraysEqualCopiedOnesAndTheReportKeepsItsTotals) {
+  VolumeMesh copied = prism_column({0.0, 0.1, 0.25});
+  copied.points[5][2] = -0.5;  // one inverted cell: validity and flags are not all zero
+  VolumeMesh moved = copied;
+  const MeshCheckReport kept = check_volume_mesh(copied);
+  MeshCheckReport taken = check_volume_mesh(moved);
+  add_quality_arrays(copied, kept);
+  move_quality_arrays(moved, &taken);
+  ASSERT_EQ(copied.cell_data.size(), moved.cell_data.size());
+  for (std::size_t i = 0; i < copied.cell_data.size(); ++i) {
+    const DataArray& a = copied.cell_data[i];
+    const DataArray& b = moved.cell_data[i];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.integer, b.integer) << a.name;
+    EXPECT_EQ(a.single_precision, b.single_precision) << a.name;
+    ASSERT_EQ(a.values.size(), b.values.size()) << a.name;
+    for (std::size_t c = 0; c < a.values.size(); ++c)
+      EXPECT_TRUE(a.values[c] == b.values[c] || (std::isnan(a.values[c]) && std::isnan(b.values[c])))
+          << a.name << " cell " << c;
+  }
+  for (const std::vector<double>& m : taken.metrics) EXPECT_TRUE(m.empty());
+  EXPECT_EQ(taken.totals.inverted, 1u);
+  EXPECT_EQ(taken.totals.inverted, kept.totals.inverted);
+  EXPECT_EQ(taken.validity, kept.validity);
+  EXPECT_FALSE(taken.ok());
+}
+
 }  // namespace
 }  // namespace blayer

@@ -161,5 +161,9 @@ VolumeMesh extract_bad_cells(const VolumeMesh& mesh, const MeshCheckReport& repo
 // The first overload runs check_volume_mesh(); the second reuses a report of this mesh.
 void add_quality_arrays(VolumeMesh& mesh);
 void add_quality_arrays(VolumeMesh& mesh, const MeshCheckReport& report);
+// The same arrays, the metrics moved out of *report instead of copied (a report of
+// millions of cells holds hundreds of MB of them): afterwards report->metrics are
+// empty; its totals, layers, validity and flags stay.
+void move_quality_arrays(VolumeMesh& mesh, MeshCheckReport* report);
 
 }  // namespace blayer
