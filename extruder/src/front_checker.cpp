@@ -398,34 +398,27 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   });
   new_tree_.refit(new_boxes_);
   for (auto& l : partner_hits_) l.clear();
-  tbb::parallel_for(tbb::blocked_range<int>(0, nt_), [&](const tbb::blocked_range<int>& r) {
-    std::vector<int>& partners = partner_hits_.local();
-    for (int f = r.begin(); f != r.end(); ++f) {
-      if (!query_[f]) continue;
-      const IndexedTriangle& s = new_tris_[f];
-      const Box& b = new_boxes_[f];
-      bool hit = false;
-      wall_tree_.for_each_overlap(b, [&](int j) {
-        if (!hit && soup_triangles_intersect(soup_, s, wall_tris_[j])) hit = true;
-      });
-      if (k_ > 0)
-        cur_tree_.for_each_overlap(b, [&](int j) {
-          if (!hit && !cur_is_wall_[j] && soup_triangles_intersect(soup_, s, cur_tris_[j])) hit = true;
-        });
-      // A pair of new triangles is tested once: from the smaller id if both are tested
-      // in this attempt, else from the one that is.
-      new_tree_.for_each_overlap(b, [&](int j) {
-        if (j == f || !tri_grows_[j] || (query_[j] && j < f)) return;
-        if (soup_triangles_intersect(soup_, s, new_tris_[j])) {
-          hit = true;
-          partners.push_back(j);
-        }
-      });
-      if (hit) collided_[f] = 1;
+  // Every pair is found by descending two trees together (TriangleBvh): the new front
+  // against the wall and the current front for the queried triangles, and against
+  // itself for the pairs with a queried triangle, each pair once.
+  new_tree_.mark_nodes(query_, &query_nodes_);
+  auto hit = [&](int f) { partner_hits_.local().push_back(f); };
+  new_tree_.for_each_overlapping_pair(query_, query_nodes_, wall_tree_, [&](int f, int j) {
+    if (soup_triangles_intersect(soup_, new_tris_[f], wall_tris_[j])) hit(f);
+  });
+  if (k_ > 0)
+    new_tree_.for_each_overlapping_pair(query_, query_nodes_, cur_tree_, [&](int f, int j) {
+      if (!cur_is_wall_[j] && soup_triangles_intersect(soup_, new_tris_[f], cur_tris_[j])) hit(f);
+    });
+  new_tree_.for_each_overlapping_pair(query_, query_nodes_, [&](int f, int j) {
+    if (!tri_grows_[f] || !tri_grows_[j]) return;
+    if (soup_triangles_intersect(soup_, new_tris_[f], new_tris_[j])) {
+      hit(f);
+      hit(j);
     }
   });
   for (const auto& l : partner_hits_)
-    for (int j : l) collided_[j] = 1;
+    for (int f : l) collided_[f] = 1;
 }
 
 void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::vector<Vec3>& next,

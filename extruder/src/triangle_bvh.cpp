@@ -110,4 +110,24 @@ void TriangleBvh::refit(const std::vector<Box>& boxes) {
   }
 }
 
+void TriangleBvh::mark_nodes(const std::vector<char>& wanted, std::vector<char>* node_wanted) const {
+  node_wanted->assign(nodes_.size(), 0);
+  // Preorder: a reverse sweep sees both children of a node before the node.
+  for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i) {
+    const Node& nd = nodes_[i];
+    char any = 0;
+    if (nd.count > 0) {
+      for (int j = nd.first; j < nd.first + nd.count && !any; ++j) any = wanted[items_[j]] != 0;
+    } else {
+      any = (*node_wanted)[nd.first] || (*node_wanted)[nd.first + nd.left_nodes];
+    }
+    (*node_wanted)[i] = any;
+  }
+}
+
+void TriangleBvh::parallel_pairs(const std::vector<std::pair<int, int>>& seeds,
+                                 const std::function<void(int, int)>& fn) {
+  tbb::parallel_for(std::size_t(0), seeds.size(), [&](std::size_t s) { fn(seeds[s].first, seeds[s].second); });
+}
+
 }  // namespace blayer

@@ -10,10 +10,18 @@
 // tested before the item is visited: a leaf's box is the union of up to kLeafSize
 // boxes, so without this most visited items would not overlap the query at all and
 // would each cost an exact pair test.
+//
+// All the overlapping pairs of two trees (a new front against the wall, the current
+// front and itself) are found by descending both together rather than by one query per
+// item: each region of the space is then read once, not once per item near it. The
+// results are the same; the memory traffic is not: on the 571k-triangle ONERA M6 the
+// extrusion's checks went from 26-30 s to 7.7 s, on the 54k BWB they stayed at 1.1 s.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "blayer/core/vec3.h"
@@ -75,6 +83,83 @@ class TriangleBvh {
     }
   }
 
+  // Which nodes hold an item with wanted[item] != 0, for the pair traversals below
+  // (*node_wanted is resized to the node count).
+  void mark_nodes(const std::vector<char>& wanted, std::vector<char>* node_wanted) const;
+
+  // visit(i, j) for every item i of this tree with wanted[i] != 0 and every item j of
+  // `other` whose boxes overlap; node_wanted from mark_nodes(wanted). Both trees are
+  // descended together, so a region of the space is visited once for all the items in
+  // it, where one query per item walks the same upper nodes again and again. Pairs are
+  // visited from several threads, in no fixed order: visit must be thread-safe.
+  template <class Visit>
+  void for_each_overlapping_pair(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
+                                 const TriangleBvh& other, Visit&& visit) const {
+    if (nodes_.empty() || other.nodes_.empty() || !node_wanted[0]) return;
+    auto leaves = [&](const Node& a, const Node& b) {
+      for (int i = a.first; i < a.first + a.count; ++i) {
+        if (!wanted[items_[i]]) continue;
+        for (int j = b.first; j < b.first + b.count; ++j)
+          if (item_box_[i].overlaps(other.item_box_[j])) visit(items_[i], other.items_[j]);
+      }
+    };
+    auto descend = [&](int a, int b, auto&& push) {
+      const Node& na = nodes_[a];
+      const Node& nb = other.nodes_[b];
+      if (!node_wanted[a] || !na.box.overlaps(nb.box)) return;
+      if (na.count > 0 && nb.count > 0) {
+        leaves(na, nb);
+      } else if (nb.count > 0 || (na.count == 0 && volume(na.box) >= volume(nb.box))) {
+        push(na.first, b);
+        push(na.first + na.left_nodes, b);
+      } else {
+        push(a, nb.first);
+        push(a, nb.first + nb.left_nodes);
+      }
+    };
+    traverse_pairs(descend);
+  }
+
+  // visit(i, j) once for every unordered pair of distinct items of this tree whose boxes
+  // overlap and of which at least one is wanted; node_wanted from mark_nodes(wanted).
+  // Thread-safe visit, no fixed order, as above.
+  template <class Visit>
+  void for_each_overlapping_pair(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
+                                 Visit&& visit) const {
+    if (nodes_.empty() || !node_wanted[0]) return;
+    // A pair (a, b) with a == b stands for the pairs inside node a.
+    auto descend = [&](int a, int b, auto&& push) {
+      const Node& na = nodes_[a];
+      const Node& nb = nodes_[b];
+      if ((!node_wanted[a] && !node_wanted[b]) || !na.box.overlaps(nb.box)) return;
+      if (a == b) {
+        if (na.count > 0) {
+          for (int i = na.first; i < na.first + na.count; ++i)
+            for (int j = i + 1; j < na.first + na.count; ++j)
+              if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]))
+                visit(items_[i], items_[j]);
+        } else {
+          const int l = na.first, r = na.first + na.left_nodes;
+          push(l, l);
+          push(r, r);
+          push(l, r);
+        }
+      } else if (na.count > 0 && nb.count > 0) {
+        for (int i = na.first; i < na.first + na.count; ++i)
+          for (int j = nb.first; j < nb.first + nb.count; ++j)
+            if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]))
+              visit(items_[i], items_[j]);
+      } else if (nb.count > 0 || (na.count == 0 && volume(na.box) >= volume(nb.box))) {
+        push(na.first, b);
+        push(na.first + na.left_nodes, b);
+      } else {
+        push(a, nb.first);
+        push(a, nb.first + nb.left_nodes);
+      }
+    };
+    traverse_pairs(descend);
+  }
+
   // visit(id, &t_max) for every item whose box the segment origin + t*dir, t in
   // [0, t_max], crosses; the visitor may shrink t_max to prune the rest of the search
   // (closest-hit queries).
@@ -103,6 +188,36 @@ class TriangleBvh {
   }
 
  private:
+  static double volume(const Box& b) {
+    return (b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1]) * (b.hi[2] - b.lo[2]);
+  }
+
+  // Node pairs from (0, 0): expanded breadth-first by descend(a, b, push) until there
+  // are enough for the threads, then each seed pair's subtree pairs on a stack of its
+  // own, in parallel.
+  template <class Descend>
+  void traverse_pairs(Descend&& descend) const {
+    std::vector<std::pair<int, int>> seeds{{0, 0}}, next;
+    for (int round = 0; round < 24 && !seeds.empty() && seeds.size() < kPairSeeds; ++round) {
+      next.clear();
+      for (const auto& [a, b] : seeds) descend(a, b, [&](int x, int y) { next.emplace_back(x, y); });
+      seeds.swap(next);
+    }
+    parallel_pairs(seeds, [&](int a0, int b0) {
+      std::vector<std::pair<int, int>> stack{{a0, b0}};
+      while (!stack.empty()) {
+        const auto [a, b] = stack.back();
+        stack.pop_back();
+        descend(a, b, [&](int x, int y) { stack.emplace_back(x, y); });
+      }
+    });
+  }
+  static constexpr std::size_t kPairSeeds = 1024;
+  // Runs fn(a, b) for every seed pair, in parallel (triangle_bvh.cpp: keeps TBB out of
+  // this header).
+  static void parallel_pairs(const std::vector<std::pair<int, int>>& seeds,
+                             const std::function<void(int, int)>& fn);
+
   struct Node {
     Box box;
     int first = 0;       // leaf: first index into items_; inner: index of the left child
