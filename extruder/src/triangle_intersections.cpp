@@ -1,5 +1,6 @@
 #include "blayer/extruder/triangle_intersections.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -151,22 +152,17 @@ std::vector<std::pair<int, int>> find_triangle_intersections(const std::vector<V
   });
   TriangleBvh bvh;
   bvh.build(boxes);
-  std::vector<std::vector<int>> hits(n);
-  tbb::parallel_for(0, n, [&](int i) {
-    // Each unordered pair is tested once, from one of its flagged triangles: the smaller
-    // index if both are flagged, else the flagged one. So an unflagged triangle owns no
-    // pair and need not search at all.
-    if (check && !(*check)[i]) return;
-    bvh.for_each_overlap(boxes[i], [&](int j) {
-      const bool cj = !check || (*check)[j];
-      if (j == i || (cj && j < i)) return;
-      if (soup_triangles_intersect(points, triangles[i], triangles[j])) hits[i].push_back(j);
-    });
-    std::sort(hits[i].begin(), hits[i].end());
+  // Each unordered pair with a flagged triangle is tested once, found by descending the
+  // tree against itself (TriangleBvh); pairs of unflagged triangles are not tested.
+  const std::vector<char> flagged = check ? *check : std::vector<char>(n, 1);
+  std::vector<char> flagged_nodes;
+  bvh.mark_nodes(flagged, &flagged_nodes);
+  tbb::enumerable_thread_specific<std::vector<std::pair<int, int>>> found;
+  bvh.for_each_overlapping_pair(flagged, flagged_nodes, [&](int i, int j) {
+    if (soup_triangles_intersect(points, triangles[i], triangles[j])) found.local().emplace_back(std::min(i, j), std::max(i, j));
   });
   std::vector<std::pair<int, int>> pairs;
-  for (int i = 0; i < n && pairs.size() < max_pairs; ++i)
-    for (int j : hits[i]) pairs.emplace_back(std::min(i, j), std::max(i, j));
+  for (const auto& l : found) pairs.insert(pairs.end(), l.begin(), l.end());
   std::sort(pairs.begin(), pairs.end());
   if (pairs.size() > max_pairs) pairs.resize(max_pairs);
   return pairs;

@@ -35,7 +35,8 @@ bool soup_triangles_intersect(const std::vector<Vec3>& points, const IndexedTria
 // All pairs (i < j) of intersecting triangles per soup_triangles_intersect, found with a
 // TriangleBvh over the triangles' boxes, in increasing (i, j) order. If `check` is given
 // (one flag per triangle) only pairs with at least one flagged triangle are tested.
-// Stops after max_pairs pairs. Parallel over triangles; the result is deterministic.
+// Returns the first max_pairs of them in that order. Parallel; the result is
+// deterministic.
 std::vector<std::pair<int, int>> find_triangle_intersections(
     const std::vector<Vec3>& points, const std::vector<IndexedTriangle>& triangles,
     const std::vector<char>* check = nullptr,
