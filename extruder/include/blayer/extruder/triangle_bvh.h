@@ -109,7 +109,7 @@ class TriangleBvh {
       if (!node_wanted[a] || !na.box.overlaps(nb.box)) return;
       if (na.count > 0 && nb.count > 0) {
         leaves(na, nb);
-      } else if (nb.count > 0 || (na.count == 0 && volume(na.box) >= volume(nb.box))) {
+      } else if (nb.count > 0 || (na.count == 0 && extent(na.box) >= extent(nb.box))) {
         push(na.first, b);
         push(na.first + na.left_nodes, b);
       } else {
@@ -149,7 +149,7 @@ class TriangleBvh {
           for (int j = nb.first; j < nb.first + nb.count; ++j)
             if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]))
               visit(items_[i], items_[j]);
-      } else if (nb.count > 0 || (na.count == 0 && volume(na.box) >= volume(nb.box))) {
+      } else if (nb.count > 0 || (na.count == 0 && extent(na.box) >= extent(nb.box))) {
         push(na.first, b);
         push(na.first + na.left_nodes, b);
       } else {
@@ -188,9 +188,9 @@ class TriangleBvh {
   }
 
  private:
-  static double volume(const Box& b) {
-    return (b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1]) * (b.hi[2] - b.lo[2]);
-  }
+  // Which of two nodes the pair traversals split: the larger by the sum of its box's
+  // extents (volumes would tie at 0 for the flat boxes of axis-aligned faces).
+  static double extent(const Box& b) { return (b.hi[0] - b.lo[0]) + (b.hi[1] - b.lo[1]) + (b.hi[2] - b.lo[2]); }
 
   // Node pairs from (0, 0): expanded breadth-first by descend(a, b, push) until there
   // are enough for the threads, then each seed pair's subtree pairs on a stack of its
