@@ -26,26 +26,58 @@ constexpr int kHexEdges[4][2] = {{0, 4}, {1, 5}, {2, 6}, {3, 7}};
 constexpr int kPyramidEdges[2][2] = {{0, 1}, {3, 2}};
 
 // Column edges as an adjacency list: for each mesh point the points it shares a column
-// edge with, each neighbour once.
-std::vector<std::vector<std::int64_t>> column_neighbours(const VolumeMesh& mesh) {
-  std::vector<std::vector<std::int64_t>> nb(mesh.points.size());
-  auto link = [&](std::int64_t a, std::int64_t b) {
-    if (a == b) return;
-    if (std::find(nb[a].begin(), nb[a].end(), b) == nb[a].end()) nb[a].push_back(b);
-    if (std::find(nb[b].begin(), nb[b].end(), a) == nb[b].end()) nb[b].push_back(a);
-  };
-  for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
-    const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
-    if (mesh.cell_types[c] == CellType::kWedge) {
-      for (const auto& e : kWedgeEdges) link(n[e[0]], n[e[1]]);
-    } else if (mesh.cell_types[c] == CellType::kHex) {
-      for (const auto& e : kHexEdges) link(n[e[0]], n[e[1]]);
-    } else if (mesh.cell_types[c] == CellType::kPyramid) {
-      for (const auto& e : kPyramidEdges) link(n[e[0]], n[e[1]]);
+// edge with, each neighbour once, in the order the cells first name them. Most points
+// have one or two (the points below and above them), so those are stored inline and
+// only the rest (fan points) in a map: one vector per point of a 5.7M-cell mesh took
+// about 0.9 GB.
+class ColumnGraph {
+ public:
+  explicit ColumnGraph(const VolumeMesh& mesh) : first_(2 * mesh.points.size(), -1), n_inline_(mesh.points.size(), 0) {
+    auto link_one = [&](std::int64_t a, std::int64_t b) {
+      std::int64_t* in = &first_[2 * a];
+      for (int i = 0; i < n_inline_[a]; ++i)
+        if (in[i] == b) return;
+      if (n_inline_[a] < 2) {
+        in[n_inline_[a]++] = b;
+        return;
+      }
+      std::vector<std::int64_t>& more = more_[a];
+      if (std::find(more.begin(), more.end(), b) == more.end()) more.push_back(b);
+    };
+    auto link = [&](std::int64_t a, std::int64_t b) {
+      if (a == b) return;
+      link_one(a, b);
+      link_one(b, a);
+    };
+    for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
+      const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
+      if (mesh.cell_types[c] == CellType::kWedge) {
+        for (const auto& e : kWedgeEdges) link(n[e[0]], n[e[1]]);
+      } else if (mesh.cell_types[c] == CellType::kHex) {
+        for (const auto& e : kHexEdges) link(n[e[0]], n[e[1]]);
+      } else if (mesh.cell_types[c] == CellType::kPyramid) {
+        for (const auto& e : kPyramidEdges) link(n[e[0]], n[e[1]]);
+      }
     }
   }
-  return nb;
-}
+
+  std::size_t size() const { return n_inline_.size(); }
+
+  // fn(q) for every neighbour q of point p, in order.
+  template <class Fn>
+  void for_each(std::int64_t p, Fn&& fn) const {
+    for (int i = 0; i < n_inline_[p]; ++i) fn(first_[2 * p + i]);
+    if (n_inline_[p] < 2) return;
+    const auto it = more_.find(p);
+    if (it != more_.end())
+      for (std::int64_t q : it->second) fn(q);
+  }
+
+ private:
+  std::vector<std::int64_t> first_;       // the first two neighbours of each point
+  std::vector<std::uint8_t> n_inline_;    // how many of them there are (0 to 2)
+  std::unordered_map<std::int64_t, std::vector<std::int64_t>> more_;  // the rest
+};
 
 // A column edge continues a column when it turns by less than 60 degrees from the
 // column's previous segment: edges that run along a ridge or across a fan (fan wedges,
@@ -57,7 +89,7 @@ constexpr double kMinContinuationCosine = 0.5;
 // aligned with the column's last segment is followed if it turns by less than 60
 // degrees; *branching is set when another one also does.
 std::vector<std::int64_t> follow_column(std::int64_t w, std::int64_t q, const VolumeMesh& mesh,
-                                        const std::vector<std::vector<std::int64_t>>& nb, std::size_t n_wall,
+                                        const ColumnGraph& nb, std::size_t n_wall,
                                         bool* branching) {
   std::vector<std::int64_t> path{q};
   std::int64_t prev = w, cur = q;
@@ -68,17 +100,17 @@ std::vector<std::int64_t> follow_column(std::int64_t w, std::int64_t q, const Vo
     std::int64_t next = -1;
     double best = kMinContinuationCosine;
     int aligned = 0;
-    for (std::int64_t c : nb[cur]) {
-      if (c == prev || static_cast<std::size_t>(c) < n_wall) continue;
-      if (std::find(path.begin(), path.end(), c) != path.end()) continue;
+    nb.for_each(cur, [&](std::int64_t c) {
+      if (c == prev || static_cast<std::size_t>(c) < n_wall) return;
+      if (std::find(path.begin(), path.end(), c) != path.end()) return;
       const double cosine = dot(normalized(mesh.points[c] - mesh.points[cur]), last);
-      if (!(cosine >= kMinContinuationCosine)) continue;
+      if (!(cosine >= kMinContinuationCosine)) return;
       ++aligned;
       if (cosine >= best) {
         best = cosine;
         next = c;
       }
-    }
+    });
     if (aligned > 1) *branching = true;
     if (next < 0) break;
     path.push_back(next);
@@ -90,12 +122,12 @@ std::vector<std::int64_t> follow_column(std::int64_t w, std::int64_t q, const Vo
 
 // The first points of the columns leaving each wall point (column edges to a point
 // off the wall), ascending.
-std::vector<std::vector<std::int64_t>> column_starts(const std::vector<std::vector<std::int64_t>>& nb,
-                                                     std::size_t n_wall) {
+std::vector<std::vector<std::int64_t>> column_starts(const ColumnGraph& nb, std::size_t n_wall) {
   std::vector<std::vector<std::int64_t>> starts(n_wall);
   for (std::size_t w = 0; w < n_wall; ++w) {
-    for (std::int64_t q : nb[w])
+    nb.for_each(static_cast<std::int64_t>(w), [&](std::int64_t q) {
       if (static_cast<std::size_t>(q) >= n_wall) starts[w].push_back(q);
+    });
     std::sort(starts[w].begin(), starts[w].end());
   }
   return starts;
@@ -199,7 +231,7 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
       incident[v].push_back(static_cast<int>(t));
     }
   }
-  const auto nb = column_neighbours(mesh);
+  const ColumnGraph nb(mesh);
   const auto starts = column_starts(nb, n_wall);
   const std::unordered_map<std::int64_t, std::vector<int>> own_triangles = first_point_triangles(mesh, wall, starts);
   const detail::NearestTriangleTree tree(wall);
