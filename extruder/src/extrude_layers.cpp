@@ -194,6 +194,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   }
   ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
   LayerAssembler assembler(wall, layout, dirs);
+  assembler.reserve_layers(rep.growth.layers);
   TriSurface front;
   front.triangles = start.triangles;
   std::vector<Vec3> next(start.points.size());

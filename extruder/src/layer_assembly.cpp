@@ -24,6 +24,21 @@ LayerAssembler::LayerAssembler(const TriSurface& wall, const ColumnLayout& layou
   }
 }
 
+void LayerAssembler::reserve_layers(int n_layers) {
+  const std::size_t layers = static_cast<std::size_t>(std::max(0, n_layers));
+  std::size_t ids = 0;
+  for (const LayerElement& e : elements_) ids += e.kind == ElementKind::kStrip ? 8 : 6;  // hex, wedge
+  const std::size_t points = mesh_.points.size() + layers * in_fan_.size();
+  const std::size_t cells = layers * elements_.size();
+  mesh_.points.reserve(points);
+  point_normal_.reserve(points);
+  point_column_.reserve(points);
+  mesh_.connectivity.reserve(layers * ids);
+  mesh_.offsets.reserve(cells + 1);
+  mesh_.cell_types.reserve(cells);
+  cell_layer_.reserve(cells);
+}
+
 void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const std::vector<Vec3>& next,
                                   const StepDirections& d, ColumnState* columns) {
   const int nv = columns->size();

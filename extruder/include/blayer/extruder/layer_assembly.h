@@ -23,6 +23,13 @@ class LayerAssembler {
   // The columns of a layout; wall point w's `normal` is that of its first column.
   LayerAssembler(const TriSurface& wall, const ColumnLayout& layout, const StepDirections& wall_directions);
 
+  // Reserves room for n_layers layers in which every column grows: the mesh's arrays
+  // then never reallocate while they grow, which briefly held both the old and the new
+  // buffer of the largest ones (the peak memory of a large run), and keep no slack.
+  // Runs whose columns stop need less; closure cells can in rare cases need a little
+  // more, and then the arrays grow as usual.
+  void reserve_layers(int n_layers);
+
   // Appends layer k: a point for every column with grows set at next[v], the cells of
   // the layer, and advances the columns (top, top_id, layers, path).
   void commit_layer(int k, const std::vector<char>& grows, const std::vector<Vec3>& next, const StepDirections& d,
