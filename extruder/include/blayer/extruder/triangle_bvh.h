@@ -109,12 +109,8 @@ class TriangleBvh {
       if (!node_wanted[a] || !na.box.overlaps(nb.box)) return;
       if (na.count > 0 && nb.count > 0) {
         leaves(na, nb);
-      } else if (nb.count > 0 || (na.count == 0 && extent(na.box) >= extent(nb.box))) {
-        push(na.first, b);
-        push(na.first + na.left_nodes, b);
       } else {
-        push(a, nb.first);
-        push(a, nb.first + nb.left_nodes);
+        split_pair(nodes_, a, other.nodes_, b, push);
       }
     };
     traverse_pairs(descend);
@@ -149,12 +145,8 @@ class TriangleBvh {
           for (int j = nb.first; j < nb.first + nb.count; ++j)
             if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]))
               visit(items_[i], items_[j]);
-      } else if (nb.count > 0 || (na.count == 0 && extent(na.box) >= extent(nb.box))) {
-        push(na.first, b);
-        push(na.first + na.left_nodes, b);
       } else {
-        push(a, nb.first);
-        push(a, nb.first + nb.left_nodes);
+        split_pair(nodes_, a, nodes_, b, push);
       }
     };
     traverse_pairs(descend);
@@ -236,6 +228,21 @@ class TriangleBvh {
       if (t0 > t1) return false;
     }
     return true;
+  }
+
+  // Pushes the child pairs of node pair (a, b), a node of `an` and b of `bn`, not both
+  // leaves: the inner node with the larger box is split (b when a is a leaf).
+  template <class Push>
+  static void split_pair(const std::vector<Node>& an, int a, const std::vector<Node>& bn, int b, Push&& push) {
+    const Node& na = an[a];
+    const Node& nb = bn[b];
+    if (nb.count > 0 || (na.count == 0 && extent(na.box) >= extent(nb.box))) {
+      push(na.first, b);
+      push(na.first + na.left_nodes, b);
+    } else {
+      push(a, nb.first);
+      push(a, nb.first + nb.left_nodes);
+    }
   }
 
   std::vector<Node> nodes_;
