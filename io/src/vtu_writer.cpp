@@ -1,6 +1,7 @@
 #include "vtu_writer.h"
 
 #include <tbb/parallel_for.h>
+#include <vtkBase64Utilities.h>
 #include <vtkDataCompressor.h>
 #include <vtkLZ4DataCompressor.h>
 #include <vtkSmartPointer.h>
@@ -87,46 +88,37 @@ const char* compressor_name(VtkCompressor c) {
   return c == VtkCompressor::kLz4 ? "vtkLZ4DataCompressor" : "vtkZLibDataCompressor";
 }
 
-// Base64 of a byte stream written in pieces: whole groups of three bytes as they come,
-// the 0 to 2 left over carried to the next piece, '=' padding at the end.
+// Base64 of a byte stream written in pieces (VTK's encoder): whole groups of three
+// bytes as they come, the 0 to 2 left over carried to the next piece, '=' padding at
+// the end.
 class Base64Writer {
  public:
   explicit Base64Writer(std::ostream& out) : out_(out) {}
   void write(const unsigned char* data, std::size_t n) {
-    text_.clear();
     std::size_t i = 0;
     while (carry_n_ > 0 && carry_n_ < 3 && i < n) carry_[carry_n_++] = data[i++];
     if (carry_n_ == 3) {
-      group(carry_[0], carry_[1], carry_[2]);
+      encode(carry_, 3);
       carry_n_ = 0;
     }
-    for (; i + 3 <= n; i += 3) group(data[i], data[i + 1], data[i + 2]);
-    while (i < n) carry_[carry_n_++] = data[i++];
-    out_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+    const std::size_t whole = (n - i) / 3 * 3;
+    encode(data + i, whole);
+    for (i += whole; i < n; ++i) carry_[carry_n_++] = data[i];
   }
   void finish() {
-    text_.clear();
-    if (carry_n_ > 0) {
-      const unsigned char b1 = carry_n_ > 1 ? carry_[1] : 0;
-      group(carry_[0], b1, 0);
-      text_[3] = '=';
-      if (carry_n_ == 1) text_[2] = '=';
-    }
+    encode(carry_, carry_n_);
     carry_n_ = 0;
-    out_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
   }
-  static std::size_t length(std::size_t bytes) { return 4 * ((bytes + 2) / 3); }
 
  private:
-  void group(unsigned char a, unsigned char b, unsigned char c) {
-    static const char kTable[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    text_ += kTable[a >> 2];
-    text_ += kTable[((a & 3) << 4) | (b >> 4)];
-    text_ += kTable[((b & 15) << 2) | (c >> 6)];
-    text_ += kTable[c & 63];
+  void encode(const unsigned char* data, std::size_t n) {
+    if (n == 0) return;
+    text_.resize(4 * ((n + 2) / 3));
+    const unsigned long length = vtkBase64Utilities::Encode(data, static_cast<unsigned long>(n), text_.data());
+    out_.write(reinterpret_cast<const char*>(text_.data()), static_cast<std::streamsize>(length));
   }
   std::ostream& out_;
-  std::string text_;
+  std::vector<unsigned char> text_;
   unsigned char carry_[3];
   int carry_n_ = 0;
 };
