@@ -397,12 +397,12 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
     if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
   });
   new_tree_.refit(new_boxes_);
-  for (auto& l : partner_hits_) l.clear();
+  for (auto& l : crossing_) l.clear();
   // Every pair is found by descending two trees together (TriangleBvh): the new front
   // against the wall and the current front for the queried triangles, and against
   // itself for the pairs with a queried triangle, each pair once.
   new_tree_.mark_nodes(query_, &query_nodes_);
-  auto hit = [&](int f) { partner_hits_.local().push_back(f); };
+  auto hit = [&](int f) { crossing_.local().push_back(f); };
   new_tree_.for_each_overlapping_pair(query_, query_nodes_, wall_tree_, [&](int f, int j) {
     if (soup_triangles_intersect(soup_, new_tris_[f], wall_tris_[j])) hit(f);
   });
@@ -417,7 +417,7 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
       hit(j);
     }
   });
-  for (const auto& l : partner_hits_)
+  for (const auto& l : crossing_)
     for (int f : l) collided_[f] = 1;
 }
 

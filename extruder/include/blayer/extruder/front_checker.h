@@ -164,7 +164,7 @@ class FrontChecker {
   std::vector<char> bad_cell_, elem_moved_;                     // per element
   std::vector<char> collided_, tri_moved_, tri_grows_, query_;  // per front triangle
   std::vector<char> side_bad_;  // a point of the new triangle off the model's side of the plane
-  tbb::enumerable_thread_specific<std::vector<int>> partner_hits_;  // front triangles found crossing
+  tbb::enumerable_thread_specific<std::vector<int>> crossing_;  // new front triangles found crossing
   std::vector<char> query_nodes_;                                   // new_tree_ nodes holding a queried triangle
 };
 

@@ -15,7 +15,7 @@
 // front and itself) are found by descending both together rather than by one query per
 // item: each region of the space is then read once, not once per item near it. The
 // results are the same; the memory traffic is not: on the 571k-triangle ONERA M6 the
-// extrusion's checks went from 26-30 s to 7.7 s, on the 54k BWB they stayed at 1.1 s.
+// extrusion's checks went from 23-30 s to 8-10 s, on the 54k BWB they stayed at 1.1-1.3 s.
 #pragma once
 
 #include <algorithm>
@@ -62,26 +62,6 @@ class TriangleBvh {
   void refit(const std::vector<Box>& boxes);
 
   bool empty() const { return nodes_.empty(); }
-
-  // visit(id) for every item whose box overlaps q.
-  template <class Visit>
-  void for_each_overlap(const Box& q, Visit&& visit) const {
-    if (nodes_.empty()) return;
-    int stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& n = nodes_[stack[--top]];
-      if (!n.box.overlaps(q)) continue;
-      if (n.count > 0) {
-        for (int i = n.first; i < n.first + n.count; ++i)
-          if (item_box_[i].overlaps(q)) visit(items_[i]);
-      } else {
-        stack[top++] = n.first;
-        stack[top++] = n.first + n.left_nodes;
-      }
-    }
-  }
 
   // Which nodes hold an item with wanted[item] != 0, for the pair traversals below
   // (*node_wanted is resized to the node count).
