@@ -220,8 +220,11 @@ double wall_edge_non_orthogonality_deg(const std::array<Vec3, 3>& f, const std::
 
 double inherited_non_orthogonality_limit_deg(double limit_deg, double inherited_deg) {
   if (!(limit_deg > 0.0)) return limit_deg;
-  const double half_cosine = 0.5 * std::cos(inherited_deg / kRadToDeg);
-  const double widened = std::acos(std::max(half_cosine, kMinNonOrthogonalityCosine)) * kRadToDeg;
+  // Below 60 degrees the factor is cos L, not 1/2: a flat wall edge (cosine 1) then
+  // widens nothing, where half its cosine would raise every such limit to 60.
+  const double factor = std::max(0.5, std::cos(limit_deg / kRadToDeg));
+  const double cosine = factor * std::cos(inherited_deg / kRadToDeg);
+  const double widened = std::acos(std::max(cosine, kMinNonOrthogonalityCosine)) * kRadToDeg;
   return std::max(limit_deg, widened);
 }
 

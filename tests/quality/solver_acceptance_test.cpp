@@ -314,6 +314,18 @@ TEST(SolverAcceptance, InheritedLimitWidensOnlyNearTheLimitAndNeverToCheckMeshsE
   EXPECT_EQ(inherited_non_orthogonality_limit_deg(0.0, 89.999), 0.0);  // off stays off
 }
 
+TEST(SolverAcceptance, InheritedLimitBelowSixtyKeepsTheLimitOverFlatWallEdges) {
+  const double deg = 180.0 / M_PI;
+  // A flat wall edge widens nothing (half its cosine would give 60 degrees).
+  EXPECT_EQ(inherited_non_orthogonality_limit_deg(50.0, 0.0), 50.0);
+  EXPECT_EQ(inherited_non_orthogonality_limit_deg(30.0, 0.0), 30.0);
+  // A leaning one widens L to the angle of cosine cos L cos i.
+  const double c50 = std::cos(50.0 / deg), c40 = std::cos(40.0 / deg);
+  EXPECT_NEAR(inherited_non_orthogonality_limit_deg(50.0, 40.0), std::acos(c50 * c40) * deg, 1e-9);
+  // The two rules meet at 60 degrees.
+  EXPECT_NEAR(inherited_non_orthogonality_limit_deg(60.0, 40.0), std::acos(0.5 * c40) * deg, 1e-9);
+}
+
 TEST(SolverAcceptance, LimitsOfZeroJudgeNothing) {
   std::vector<Vec3> p = sheared_prism(1.0, {100.0, 0, 0});
   EXPECT_FALSE(AcceptanceLimits{}.any());

@@ -29,7 +29,7 @@
 //     the edge's other triangle, or as boundary faces on open wall edges; where the
 //     wall edge's own non-orthogonality exceeds acos(2 cos limit) (thin CAD triangles
 //     at the default limit, many more at a low one), the face's limit is widened to
-//     twice the wall's lean
+//     twice the wall's lean (below a limit of 60, by the limit's own cosine)
 //     (inherited_non_orthogonality_limit_deg), so that no column is ended for the
 //     wall's geometry, and never to checkMesh's error;
 //   top face (the new front triangle): as a boundary face, the layers' envelope, until

@@ -125,12 +125,14 @@ double wall_edge_non_orthogonality_deg(const std::array<Vec3, 3>& f, const std::
                                        const Vec3& b);
 
 // The non-orthogonality limit for a face whose wall edge inherits `inherited_deg`: the
-// larger of the user's limit and the angle whose cosine is half the inherited one (the
-// face may lean twice as far towards its plane as the wall's own, so that a column is
-// never ended for the wall's geometry and can still turn), but never an angle whose
-// cosine is kMinNonOrthogonalityCosine or less. It widens the limit L where the wall's
-// own angle exceeds acos(2 cos L): 89.98 degrees for the default 89.99, 46.8 for 70.
-// A limit of 0 stays off.
+// larger of the user's limit L and the angle whose cosine is the inherited one times
+// max(1/2, cos L) (from L = 60 degrees on, the face may lean twice as far towards its
+// plane as the wall's own; below, as far as L allows on top of the wall's lean), so that
+// a column is never ended for the wall's geometry and can still turn; but never an
+// angle whose cosine is kMinNonOrthogonalityCosine or less. From 60 degrees on it widens
+// L where the wall's own angle exceeds acos(2 cos L): 89.98 degrees for the default
+// 89.99, 46.8 for 70; below 60, wherever the wall edge is not flat, by an amount that
+// vanishes with the wall's angle. A limit of 0 stays off.
 double inherited_non_orthogonality_limit_deg(double limit_deg, double inherited_deg);
 
 // checkMesh fails a face whose non-orthogonality cosine is 1e-15 or less; a cosine is
