@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "blayer/core/triangle_ids.h"
 #include "nearest_triangle.h"
 
 namespace blayer {
@@ -146,28 +147,24 @@ std::unordered_map<std::int64_t, std::vector<int>> first_point_triangles(
     if (s.size() > 1)
       for (std::int64_t q : s) out[q];
   if (out.empty()) return out;
-  std::map<std::array<std::int64_t, 3>, int> triangle_of;
+  std::map<TriangleKey, int> triangle_of;
   for (std::size_t t = 0; t < wall.triangles.size(); ++t) {
-    std::array<std::int64_t, 3> k{wall.triangles[t][0], wall.triangles[t][1], wall.triangles[t][2]};
-    std::sort(k.begin(), k.end());
-    triangle_of[k] = static_cast<int>(t);
+    const Triangle& w = wall.triangles[t];
+    triangle_of[sorted_triangle(w[0], w[1], w[2])] = static_cast<int>(t);
   }
   for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
     const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
     const bool wedge = mesh.cell_types[c] == CellType::kWedge;
     if (!wedge && mesh.cell_types[c] != CellType::kPyramid) continue;
-    std::array<std::int64_t, 3> base = wedge ? std::array<std::int64_t, 3>{n[0], n[1], n[2]}
-                                             : std::array<std::int64_t, 3>{n[0], n[3], n[4]};
-    if (base[0] >= n_wall || base[1] >= n_wall || base[2] >= n_wall) continue;
+    const TriangleKey base = wedge ? sorted_triangle(n[0], n[1], n[2]) : sorted_triangle(n[0], n[3], n[4]);
+    if (base[2] >= n_wall) continue;  // the largest id: all three on the wall
     auto add = [&](const int(*edges)[2], int count) {
       for (int e = 0; e < count; ++e) {
         const std::int64_t a = n[edges[e][0]], b = n[edges[e][1]];
         if (a >= n_wall || b < n_wall) continue;
         const auto fan_first = out.find(b);
         if (fan_first == out.end()) continue;
-        std::array<std::int64_t, 3> key = base;
-        std::sort(key.begin(), key.end());
-        const auto it = triangle_of.find(key);
+        const auto it = triangle_of.find(base);
         if (it != triangle_of.end()) fan_first->second.push_back(it->second);
       }
     };
