@@ -286,7 +286,8 @@ struct Walk {
       if (offset < 0 || static_cast<std::uint64_t>(offset) > file.size() - appended_at)
         return named(e) + " has an offset of " + std::to_string(offset) + " outside the file";
       const std::size_t at = appended_at + static_cast<std::size_t>(offset);
-      const std::size_t run_end = at <= appended_run_end ? appended_run_end : base64_run_end(file, at);
+      const std::size_t run_end =
+          !appended_base64 ? 0 : at <= appended_run_end ? appended_run_end : base64_run_end(file, at);
       return check_compressed_header(DataBytes(file, at, appended_base64, run_end), format, block_allowed, named(e));
     }
     const char* how = e.GetAttribute("format");
@@ -342,7 +343,9 @@ std::string vtp_precheck_problem(std::string_view bytes) {
     const char* encoding = appended->GetAttribute("encoding");
     walk.appended_base64 = !(encoding && std::strcmp(encoding, "raw") == 0);
   }
-  walk.appended_run_end = base64_run_end(bytes, walk.appended_at);
+  // Where the appended base64 run ends, found once, and only if a header will be read
+  // there (raw data need no run end; without compression no header is read at all).
+  if (walk.compressed && walk.appended_base64) walk.appended_run_end = base64_run_end(bytes, walk.appended_at);
   return walk.element(root);
 }
 
