@@ -12,7 +12,6 @@ half="$1"; axis="$2"
 blayer="$root/build/app/blayer"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-/usr/bin/python3 "$root/bench/off_to_stl.py" "$half" "$work/half.stl"
 /usr/bin/python3 "$root/bench/mirror_half_model.py" "$half" "$axis" "$work/full.off"
 h1=$(/usr/bin/python3 - "$work/full.off" <<'PY'
 import math, sys

@@ -38,6 +38,16 @@ def main(src, axis_name, dst):
     for (a, b), n in count.items():
         if n == 1:
             on_plane.update((a, b))
+    # Snapped only when a rounding away: any other open edge (a hole, a base off the
+    # plane) would make a wrong full model.
+    lo = [min(p[k] for p in pts) for k in range(3)]
+    hi = [max(p[k] for p in pts) for k in range(3)]
+    tol = 1e-9 * sum((h - l) ** 2 for l, h in zip(lo, hi)) ** 0.5
+    off = [v for v in on_plane if abs(pts[v][axis]) > tol]
+    if off:
+        sys.exit("%s: %d points of open edges lie off the plane %s = 0 (e.g. point %d at %s = %g), "
+                 "so the model is not a half model open at that plane" % (src, len(off), axis_name, off[0],
+                                                                         axis_name, pts[off[0]][axis]))
     for v in on_plane:
         pts[v][axis] = 0.0
     mirror = {}

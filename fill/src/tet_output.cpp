@@ -13,10 +13,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-using FaceKey = TriangleKey;
-
 struct FaceRef {
-  FaceKey key;
+  TriangleKey key;
   std::int64_t tet;
 };
 
@@ -162,7 +160,7 @@ void assemble_fill_result(const TriSurface& envelope, const OuterBoundary& outer
 void check_conformity(const FillResult& result) {
   const std::vector<std::int64_t>& conn = result.tets.connectivity;
   const std::vector<FaceRef> single = single_faces(conn);
-  std::vector<std::pair<FaceKey, std::size_t>> bnd;
+  std::vector<std::pair<TriangleKey, std::size_t>> bnd;
   for (std::size_t b = 0; b < result.boundary.triangles.size(); ++b) {
     const Triangle& t = result.boundary.triangles[b];
     bnd.push_back({sorted_triangle(t[0], t[1], t[2]), b});
