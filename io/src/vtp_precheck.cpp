@@ -208,8 +208,8 @@ double value_bytes(vtkXMLDataElement& a) {
 }
 
 // What the element counts make VTK allocate before it reads any data: the points and
-// every point- and cell-data array, sized from the pieces' counts (summed over the
-// pieces), and each cell type's offsets. A count too large for the allowance fails
+// every point- and cell-data array and each cell type's offsets, all sized from the
+// counts summed over the pieces. A count too large for the allowance fails
 // VTK's allocation, after which VTK 9.1 leaks the arrays it had made.
 std::string count_problem(vtkXMLDataElement& root, double allowed) {
   std::vector<vtkXMLDataElement*> pieces;
@@ -220,20 +220,23 @@ std::string count_problem(vtkXMLDataElement& root, double allowed) {
     if (e->GetName() && std::strcmp(e->GetName(), "Piece") == 0) pieces.push_back(e);
     for (int i = 0; i < e->GetNumberOfNestedElements(); ++i) stack.push_back(e->GetNestedElement(i));
   }
-  double points = 0, cells = 0;
-  std::ostringstream why;
-  for (vtkXMLDataElement* piece : pieces) {
-    for (const char* count : {"NumberOfPoints", "NumberOfVerts", "NumberOfLines", "NumberOfStrips", "NumberOfPolys"}) {
+  // Each count summed over the pieces: VTK sizes its arrays for the whole output.
+  constexpr const char* kCounts[] = {"NumberOfPoints", "NumberOfVerts", "NumberOfLines", "NumberOfStrips",
+                                     "NumberOfPolys"};
+  double total[5] = {0, 0, 0, 0, 0};
+  for (vtkXMLDataElement* piece : pieces)
+    for (int k = 0; k < 5; ++k) {
       vtkIdType n = 0;
-      if (!piece->GetScalarAttribute(count, n) || n <= 0) continue;
-      const bool of_points = std::strcmp(count, "NumberOfPoints") == 0;
-      (of_points ? points : cells) += static_cast<double>(n);
-      const double bytes = of_points ? 12.0 * static_cast<double>(n) : 4.0 * (static_cast<double>(n) + 1);
-      if (bytes > allowed) {
-        why << "a piece claims " << count << "=" << n << ", " << bytes_text(bytes) << " bytes or more, more than "
-            << bytes_text(allowed) << kAllowance;
-        return why.str();
-      }
+      if (piece->GetScalarAttribute(kCounts[k], n) && n > 0) total[k] += static_cast<double>(n);
+    }
+  const double points = total[0], cells = total[1] + total[2] + total[3] + total[4];
+  std::ostringstream why;
+  for (int k = 0; k < 5; ++k) {
+    const double bytes = k == 0 ? 12.0 * total[k] : 4.0 * (total[k] + 1);
+    if (total[k] > 0 && bytes > allowed) {
+      why << "the pieces claim " << kCounts[k] << "=" << bytes_text(total[k]) << " in all, " << bytes_text(bytes)
+          << " bytes or more, more than " << bytes_text(allowed) << kAllowance;
+      return why.str();
     }
   }
   for (vtkXMLDataElement* piece : pieces)

@@ -342,8 +342,21 @@ TEST(VtpPrecheck, CountsWhoseArraysExceedTheAllowanceAreRefusedNamingThem) {
   EXPECT_NE(wide.find("DataArray \"p\" of 100000000 components per point needs 3200000000 bytes"), std::string::npos)
       << wide;
   const std::string polys = read_error(ascii_tetra("", "1000000000"));
-  EXPECT_NE(polys.find("a piece claims NumberOfPolys=1000000000, 4000000004 bytes or more"), std::string::npos)
+  EXPECT_NE(polys.find("the pieces claim NumberOfPolys=1000000000 in all, 4000000004 bytes or more"),
+            std::string::npos)
       << polys;
+}
+
+// VTK sizes its arrays for all the pieces together: counts each within the allowance
+// are refused when their sum is not.
+TEST(VtpPrecheck, CountsAreSummedOverThePieces) {
+  const std::string one = ascii_tetra("", "400000000");
+  EXPECT_EQ(read_error(one).find("NumberOfPolys="), std::string::npos) << read_error(one);
+  const std::size_t piece = one.find("<Piece"), end = one.find("</Piece>") + 8;
+  std::string two = one;
+  two.insert(end, one.substr(piece, end - piece));
+  const std::string error = read_error(two);
+  EXPECT_NE(error.find("the pieces claim NumberOfPolys=800000000 in all"), std::string::npos) << error;
 }
 
 // VTK 9.1 reads such points and fails after taking objects it never frees.
