@@ -64,17 +64,20 @@ OuterBoundary half_domain_boundary(const TriSurface& envelope, const SymmetryPla
   in.inside_point = outer.surface.points[corner] + 0.01 * (0.5 * (box.lo + box.hi) - outer.surface.points[corner]);
   in.inside_point = plane.project(in.inside_point);
 
-  // Target edge length on the facet: the fill's size field, never above the box's
-  // spacing (the facet's boundary edges on the box have that length).
+  // Target edge length on the facet: kPlaneFacetSizeFactor times the fill's size field,
+  // never above the box's spacing (the facet's boundary edges on the box have that
+  // length). The facet's new points carry the same size to TetGen.
   const double box_spacing = *spacing;
-  const PlaneFacet facet =
-      triangulate_plane_facet(in, plane, [&](const Vec3& p) { return std::min(size(p), box_spacing); });
+  auto facet_size = [&](const Vec3& p) { return std::min(kPlaneFacetSizeFactor * size(p), box_spacing); };
+  const PlaneFacet facet = triangulate_plane_facet(in, plane, facet_size);
   // The facet's new points join the farfield's; envelope points keep their encoding.
   const int n_in = static_cast<int>(in.points.size());
   std::vector<int> new_index(facet.new_points.size());
+  outer.point_size.assign(outer.surface.points.size(), 0.0);
   for (std::size_t j = 0; j < facet.new_points.size(); ++j) {
     new_index[j] = static_cast<int>(outer.surface.points.size());
     outer.surface.points.push_back(facet.new_points[j]);
+    outer.point_size.push_back(facet_size(facet.new_points[j]));
   }
   const int n_far = static_cast<int>(outer.surface.points.size());
   auto outer_index = [&](int i) {

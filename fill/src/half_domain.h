@@ -19,8 +19,22 @@ namespace blayer::fill_detail {
 // in it). Throws InputError naming the first offending edge.
 void check_half_envelope(const TriSurface& envelope, const SymmetryPlane& plane);
 
+// How much larger than the fill's size field the plane facet's triangles are, and the
+// size its new points carry to TetGen. In the full (mirrored) model no boundary lies on
+// the plane and the tetrahedra crossing it have mean edges of 0.86 times the field (the
+// pyHyp BWB, within 1 of the root); a facet refined to edges of at most the field has
+// mean edges of 0.68 times it, and its points pin the tetrahedra on the plane to that:
+// the half fill had 1.7 times the full's density next to the plane and 1.06 to 1.12
+// times half its cells. With facet triangles of mean edge 0.96 times the field, the
+// tetrahedra next to the plane have mean edges of 0.89 times it, as in the full model.
+// Chosen on the BWB; bench/compare_half_full.sh on the M6, 717 and BWB halves measures
+// the half fill at 0.45 to 0.49 of the full model's cells. Coarsening the facet alone
+// changes nothing: its points' sizes still pin the tetrahedra.
+inline constexpr double kPlaneFacetSizeFactor = 1.5;
+
 // The half box (markers kFarfieldMarker) and the plane facet (kSymmetryMarker) between
 // its face on the plane and the envelope's cut. *spacing: the box's grid spacing.
+// outer.point_size holds the facet's new points' sizes (kPlaneFacetSizeFactor).
 OuterBoundary half_domain_boundary(const TriSurface& envelope, const SymmetryPlane& plane, const Vec3& lo_env,
                                    const Vec3& hi_env, double scale, const SizeField& size, double* spacing);
 

@@ -129,7 +129,15 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
       half ? closed_body_hole_points(envelope, norm(hi - lo)) : hole_points(envelope, parts, outside, norm(hi - lo));
   for (const Vec3& h : holes) plc.tetgen.holes.insert(plc.tetgen.holes.end(), h.begin(), h.end());
   st.n_holes = static_cast<std::int64_t>(holes.size());
-  for (const Vec3& p : plc.points) plc.tetgen.point_metric.push_back(kRegularTetCircumradius * size(p));
+  // Each point's target size: its own where the outer boundary gives one (the plane
+  // facet's points), else the field's.
+  const std::size_t n_env_local = plc.envelope.used.size();
+  for (std::size_t j = 0; j < plc.points.size(); ++j) {
+    const int outer_point = j < n_env_local ? -1 : plc.farfield.used[j - n_env_local];
+    const bool own = outer_point >= 0 && !outer.point_size.empty() && outer.point_size[outer_point] > 0.0;
+    plc.tetgen.point_metric.push_back(kRegularTetCircumradius *
+                                      (own ? outer.point_size[outer_point] : size(plc.points[j])));
+  }
 
   const Stopwatch tetgen_time;
   const TetgenMesh mesh =

@@ -35,6 +35,9 @@ struct FillPlc {
 struct OuterBoundary {
   TriSurface surface;
   std::vector<int> markers;
+  // A point's own target size where it is not the fill's size field (> 0): the new
+  // points of a half model's plane facet (half_domain.h); empty or 0 elsewhere.
+  std::vector<double> point_size;
   int envelope_point(int i) const { return i - static_cast<int>(surface.points.size()); }
   bool is_envelope_point(int i) const { return i >= static_cast<int>(surface.points.size()); }
 };

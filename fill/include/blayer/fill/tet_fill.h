@@ -72,9 +72,11 @@
 // (its boundary edges lie exactly on it); the farfield is the box the mirrored model
 // would get, cut by the plane; the plane facet is the box's face on the plane outside
 // the envelope's cut, triangulated by constrained Delaunay refinement (smallest angle
-// 20.7 degrees, edges up to the box spacing) without splitting the box's or the cut's
-// edges, marker 3; bodies cut by the plane need no hole point. Only the generated box,
-// region outside and coordinate planes.
+// 20.7 degrees, edges up to 1.5 times the size field and up to the box spacing, so that
+// the tets next to the plane are as large as those crossing it in the mirrored model:
+// src/half_domain.h) without splitting the box's or the cut's edges, marker 3; bodies
+// cut by the plane need no hole point. Only the generated box, region outside and
+// coordinate planes.
 //
 // Failure behaviour: throws blayer::InputError for bad input (open, non-manifold,
 // inconsistently oriented, self-intersecting, degenerate or duplicate points, wrong
