@@ -245,7 +245,9 @@ int run_extrude_command(const ParamValues& params) {
   const double check_seconds = check_time.seconds();
 
   std::optional<MarkedBoundary> boundary;
-  if (filled) boundary = hybrid_boundary(result.mesh, prepared.surface, filled->fill, filled->fill_to_mesh);
+  if (filled)
+    boundary = hybrid_boundary(result.mesh, prepared.surface, filled->fill, filled->fill_to_mesh,
+                               prepared.symmetry ? &*prepared.symmetry : nullptr);
   PatchSources patch_sources{&prepared.surface, boundary ? &*boundary : nullptr, &result.envelope,
                              &result.envelope_point_ids, prepared.symmetry ? &*prepared.symmetry : nullptr};
   const std::vector<BoundaryPatch> patches = write_mesh_output(out.mesh_staged, result.mesh, patch_sources, out.vtk);

@@ -213,7 +213,7 @@ const std::vector<ParamSpec>& parameter_table() {
       {"farfield", ParamType::kPath, "", "", "closed surface bounding the domain for --fill (default: a box, see farfield-scale)", kExtrudeCmd},
       ParamSpec{"farfield-scale", ParamType::kReal, "10", "", "farfield box size for --fill, as a multiple of the body's bounding box (each side)", kExtrudeCmd}.in("> 1", "the box must enclose the body"),
       ParamSpec{"fill-growth", ParamType::kReal, "1.3", "", "size growth rate of the tetrahedra from the layers' envelope to the farfield", kExtrudeCmd}.in(">= 1"),
-      {"boundary", ParamType::kPath, "", "", "with --fill: write the boundary triangles with a marker array (1 wall, 2 farfield) as .vtp", kExtrudeCmd},
+      {"boundary", ParamType::kPath, "", "", "with --fill: write the boundary triangles with a marker array (1 wall, 2 farfield, 3 symmetry) as .vtp", kExtrudeCmd},
       {"format", ParamType::kString, "auto", "", "format of the extrude mesh output: auto (from -o: .vtu, .cgns, .su2, .msh, or a path ending in constant/polyMesh), vtu, cgns, openfoam (-o names the case directory or its constant/polyMesh), su2, msh", kExtrudeCmd, "auto|vtu|cgns|openfoam|su2|msh"},
       {"vtk-compressor", ParamType::kString, "zlib", "", "compressor of the .vtu/.vtp outputs: zlib (smaller, read by ParaView and meshio) or lz4 (3-4x faster to write, 20-35 % larger, meshio cannot read it)", kAll, "zlib|lz4"},
       ParamSpec{"threads", ParamType::kInt, "0", "", "worker threads (0: all cores)", kAll}.in(">= 0", "0: all cores"),

@@ -1,9 +1,11 @@
 #include "blayer/fill/hybrid_mesh.h"
 
 #include <algorithm>
+#include <set>
 #include <utility>
 
 #include "blayer/core/assert.h"
+#include "blayer/io/mesh_faces.h"
 
 namespace blayer {
 
@@ -43,8 +45,43 @@ std::vector<std::int64_t> append_fill(const FillResult& fill, const std::vector<
   return to_mesh;
 }
 
+namespace {
+
+// The cells' faces that lie in the plane, as outward triangles (quads split along
+// q0-q2), except those already listed (the fill's plane facet). A face in the plane has
+// the domain on one side only, so it is a boundary face.
+std::vector<Triangle> other_faces_in_plane(const VolumeMesh& mesh, const SymmetryPlane& plane,
+                                           const std::vector<Triangle>& listed) {
+  std::set<TriangleKey> seen;
+  for (const Triangle& t : listed) seen.insert(sorted_triangle(t[0], t[1], t[2]));
+  std::vector<char> on(mesh.points.size());
+  for (std::size_t i = 0; i < on.size(); ++i) on[i] = plane.signed_distance(mesh.points[i]) == 0.0;
+  std::vector<Triangle> out;
+  for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
+    const std::int64_t* n = &mesh.connectivity[mesh.offsets[c]];
+    const int nn = corner_count(mesh.cell_types[c]);
+    if (std::count_if(n, n + nn, [&](std::int64_t v) { return on[v]; }) < 3) continue;
+    const CellFaceTable& table = cell_face_table(mesh.cell_types[c]);
+    for (int f = 0; f < table.n_faces; ++f) {
+      const int k = table.n_corners[f];
+      int v[4];
+      bool in_plane = true;
+      for (int j = 0; j < k; ++j) {
+        v[j] = static_cast<int>(n[table.corners[f][j]]);
+        in_plane = in_plane && on[v[j]];
+      }
+      if (!in_plane || (k == 3 && seen.count(sorted_triangle(v[0], v[1], v[2])))) continue;
+      out.push_back({v[0], v[1], v[2]});
+      if (k == 4) out.push_back({v[0], v[2], v[3]});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 MarkedBoundary hybrid_boundary(const VolumeMesh& mesh, const TriSurface& wall, const FillResult& fill,
-                               const std::vector<std::int64_t>& fill_to_mesh) {
+                               const std::vector<std::int64_t>& fill_to_mesh, const SymmetryPlane* plane) {
   BLAYER_ASSERT(wall.points.size() <= mesh.points.size());
   BLAYER_ASSERT_MSG(std::equal(wall.points.begin(), wall.points.end(), mesh.points.begin()),
                     "the wall points are the mesh's first points");
@@ -66,6 +103,11 @@ MarkedBoundary hybrid_boundary(const VolumeMesh& mesh, const TriSurface& wall, c
                                    static_cast<int>(fill_to_mesh[t[1]])});
     b.marker.push_back(static_cast<int>(m == kFarfieldMarker ? BoundaryMarker::kFarfield : BoundaryMarker::kSymmetry));
   }
+  if (plane)
+    for (const Triangle& t : other_faces_in_plane(mesh, *plane, b.surface.triangles)) {
+      b.surface.triangles.push_back(t);
+      b.marker.push_back(static_cast<int>(BoundaryMarker::kSymmetry));
+    }
   return b;
 }
 

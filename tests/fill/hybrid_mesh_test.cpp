@@ -155,6 +155,47 @@ TEST(HybridMesh, BoundaryMarksWallAndFarfieldOnTheMeshPointsFacingOutward) {
   EXPECT_EQ(check_volume_mesh(l.mesh).boundary_faces, b.surface.triangles.size());
 }
 
+// A half model: the layers' side quads over the cut lie in the plane with the fill's
+// facet; listed as their halves, the symmetry triangles tile the half box's face on the
+// plane (with the disk the wall's cut encloses), all facing out of the domain (-z).
+TEST(HybridMesh, HalfModelBoundaryListsTheLayersFacesInThePlaneSoTheSymmetryTrianglesTileIt) {
+  const int n_lon = 16;
+  const TriSurface half = test_surfaces::cut_at_coordinate_plane(test_surfaces::uv_sphere(8, n_lon, 1.0, 0.0), 2);
+  OneLayer l = one_layer(half, [](const Vec3& p) { return 1.1 * p; });
+  FillOptions opt;
+  opt.farfield_scale = 3.0;
+  opt.symmetry = SymmetryPlane{{0.0, 0.0, 1.0}, 0.0, 2};
+  const FillResult fill = fill_with_tets(l.envelope, opt);
+  const std::vector<std::int64_t> to_mesh = append_fill(fill, l.envelope_ids, &l.mesh);
+  const MarkedBoundary b = hybrid_boundary(l.mesh, l.wall, fill, to_mesh, &*opt.symmetry);
+
+  double area = 0.0, lo_x = HUGE_VAL, hi_x = -HUGE_VAL, lo_y = HUGE_VAL, hi_y = -HUGE_VAL;
+  long n_symmetry = 0;
+  for (std::size_t i = 0; i < b.surface.triangles.size(); ++i) {
+    if (b.marker[i] != 3) continue;
+    ++n_symmetry;
+    const Vec3& p = b.surface.points[b.surface.triangles[i][0]];
+    const Vec3& q = b.surface.points[b.surface.triangles[i][1]];
+    const Vec3& r = b.surface.points[b.surface.triangles[i][2]];
+    ASSERT_TRUE(p[2] == 0.0 && q[2] == 0.0 && r[2] == 0.0) << "symmetry triangle " << i << " off the plane";
+    const double z_normal = cross(q - p, r - p)[2];
+    EXPECT_LT(z_normal, 0.0) << "symmetry triangle " << i << " faces into the domain";
+    area -= 0.5 * z_normal;
+    for (const Vec3& v : {p, q, r}) {
+      lo_x = std::min(lo_x, v[0]);
+      hi_x = std::max(hi_x, v[0]);
+      lo_y = std::min(lo_y, v[1]);
+      hi_y = std::max(hi_y, v[1]);
+    }
+  }
+  const long n_facet = static_cast<long>(
+      std::count(fill.boundary_marker.begin(), fill.boundary_marker.end(), kSymmetryMarker));
+  EXPECT_EQ(n_symmetry, n_facet + 2 * n_lon) << "the facet and two halves per side quad over the cut";
+  const double cut = 0.5 * n_lon * std::sin(2 * M_PI / n_lon);  // the wall's equator polygon
+  const double box_face = (hi_x - lo_x) * (hi_y - lo_y);
+  EXPECT_NEAR(area + cut, box_face, 1e-12 * box_face);
+}
+
 TEST(HybridMesh, InternalFlowBoundaryIsTheWallAloneFacingOutOfThePipe) {
   const TriSurface pipe = box({0, 0, 0}, {3, 1, 1}, 3, /*inward=*/true);
   const Vec3 centre{1.5, 0.5, 0.5};

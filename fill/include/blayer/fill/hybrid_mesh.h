@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "blayer/core/surface.h"
+#include "blayer/core/symmetry_plane.h"
 #include "blayer/core/volume_mesh.h"
 #include "blayer/fill/tet_fill.h"
 
@@ -28,7 +29,7 @@ namespace blayer {
 enum class BoundaryMarker : int {
   kWall = 1,      // the wall surface the layers grow on
   kFarfield = 2,  // the farfield box or the user's farfield surface
-  kSymmetry = 3,  // a half model's symmetry plane (the fill's plane facet)
+  kSymmetry = 3,  // a half model's symmetry plane (the fill's plane facet, the layers' faces on it)
 };
 
 // Appends the fill's tets to the layer mesh: envelope point i of the fill becomes mesh
@@ -45,13 +46,15 @@ struct MarkedBoundary {
 };
 
 // The boundary of the hybrid mesh: the wall's triangles (kWall), then the fill's
-// farfield triangles (kFarfield) and plane facet triangles (kSymmetry; the layers' own
-// faces on the plane are not triangles and are not listed), on the mesh's points, every triangle oriented
-// outward: its right-hand normal points out of the meshed domain (into the body at the
-// wall, away from the domain at the farfield), the convention of solver boundary
-// faces. For region inside (internal flow) the boundary is the wall alone.
-// fill_to_mesh is what append_fill returned.
+// farfield triangles (kFarfield) and plane facet triangles (kSymmetry), then, given the
+// half model's symmetry plane, the other cell faces on it (the layers'; kSymmetry; a
+// quad as its two halves along its q0-q2 diagonal, as quads appear in every triangle
+// list of blayer: io/mesh_faces.h), on the mesh's points, every triangle oriented outward: its
+// right-hand normal points out of the meshed domain (into the body at the wall, away
+// from the domain at the farfield), the convention of solver boundary faces. The
+// triangles then close the domain, the plane included. For region inside (internal
+// flow) the boundary is the wall alone. fill_to_mesh is what append_fill returned.
 MarkedBoundary hybrid_boundary(const VolumeMesh& mesh, const TriSurface& wall, const FillResult& fill,
-                               const std::vector<std::int64_t>& fill_to_mesh);
+                               const std::vector<std::int64_t>& fill_to_mesh, const SymmetryPlane* plane = nullptr);
 
 }  // namespace blayer
