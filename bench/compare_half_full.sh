@@ -23,14 +23,17 @@ PY
 )
 law=(--layers 10 --first-height "$h1" --growth-ratio 1.2)
 cells() { grep -E "^check:" "$1" | sed -E 's/^check: ([0-9]+) cells.*/\1/'; }
-echo "half $half, plane $axis = 0, h1 = $h1"
-"$blayer" extrude "$half" -o "$work/h.vtu" "${law[@]}" > "$work/h.log" 2>&1
-"$blayer" extrude "$work/full.off" -o "$work/f.vtu" "${law[@]}" > "$work/f.log" 2>&1
-nh=$(cells "$work/h.log"); nf=$(cells "$work/f.log")
-echo "layers only: half $nh, full $nf cells, ratio $(/usr/bin/python3 -c "print('%.4f' % ($nh / $nf))")"
-for scale in 10 10.001 9.999; do
-  "$blayer" extrude "$half" -o "$work/h.vtu" "${law[@]}" --fill --farfield-scale "$scale" > "$work/h.log" 2>&1
-  "$blayer" extrude "$work/full.off" -o "$work/f.vtu" "${law[@]}" --fill --farfield-scale "$scale" > "$work/f.log" 2>&1
+# Both models with the same options; prints both cell counts and their ratio.
+compare() {
+  local label="$1"; shift
+  "$blayer" extrude "$half" -o "$work/h.vtu" "${law[@]}" "$@" > "$work/h.log" 2>&1
+  "$blayer" extrude "$work/full.off" -o "$work/f.vtu" "${law[@]}" "$@" > "$work/f.log" 2>&1
+  local nh nf
   nh=$(cells "$work/h.log"); nf=$(cells "$work/f.log")
-  echo "fill, farfield scale $scale: half $nh, full $nf cells, ratio $(/usr/bin/python3 -c "print('%.4f' % ($nh / $nf))")"
+  echo "$label: half $nh, full $nf cells, ratio $(/usr/bin/python3 -c "print('%.4f' % ($nh / $nf))")"
+}
+echo "half $half, plane $axis = 0, h1 = $h1"
+compare "layers only"
+for scale in 10 10.001 9.999; do
+  compare "fill, farfield scale $scale" --fill --farfield-scale "$scale"
 done
