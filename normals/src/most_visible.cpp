@@ -1,8 +1,12 @@
 #include "blayer/normals/most_visible.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
+
+#include "normal_hull.h"
 
 namespace blayer {
 
@@ -96,36 +100,93 @@ MostVisibleResult finish_feasible(const Vec3* f, int k, const Vec3& q, int suppo
 
 }  // namespace
 
-MostVisibleResult best_margin_direction(const Vec3* f, int k) {
-  MostVisibleResult best;
-  best.visibility = -std::numeric_limits<double>::infinity();
-  auto consider = [&](const Vec3& c) {
+namespace {
+
+// The largest margin min_j n.f_j among the candidate directions offered, each in both
+// signs; the first of equal margins is kept.
+class MarginSearch {
+ public:
+  MarginSearch(const Vec3* f, int k) : f_(f), k_(k) { best_.visibility = -std::numeric_limits<double>::infinity(); }
+  void consider(const Vec3& c) {
     const double len = norm(c);
     if (!(len > 0.0)) return;
     for (const Vec3& n : {c / len, -c / len}) {
       // Only a strictly larger margin replaces the best, so a candidate is abandoned as
       // soon as one face reaches the best margin: the same answer, at a fraction of the
-      // O(k^4) cost (one face suffices for most of the k^3 candidates).
+      // cost (one face suffices for most candidates).
       double v = std::numeric_limits<double>::infinity();
-      for (int j = 0; j < k && v > best.visibility; ++j) v = std::min(v, dot(f[j], n));
-      if (v > best.visibility) {
-        best.visibility = v;
-        best.normal = n;
+      for (int j = 0; j < k_ && v > best_.visibility; ++j) v = std::min(v, dot(f_[j], n));
+      if (v > best_.visibility) {
+        best_.visibility = v;
+        best_.normal = n;
       }
     }
-  };
+  }
+  MostVisibleResult result() const {
+    MostVisibleResult r = best_;
+    if (k_ == 1) r.visibility = 1.0;
+    r.feasible = false;
+    return r;
+  }
+
+ private:
+  const Vec3* f_;
+  int k_;
+  MostVisibleResult best_;
+};
+
+}  // namespace
+
+MostVisibleResult best_margin_direction_by_enumeration(const Vec3* f, int k) {
+  MarginSearch search(f, k);
   for (int a = 0; a < k; ++a) {
-    consider(f[a]);
+    search.consider(f[a]);
     for (int b = a + 1; b < k; ++b) {
-      consider(f[a] + f[b]);
+      search.consider(f[a] + f[b]);
       // A great circle through both normals: the margin directions of a flat hull.
-      consider(cross(f[a], f[b]));
-      for (int c = b + 1; c < k; ++c) consider(cross(f[b] - f[a], f[c] - f[a]));
+      search.consider(cross(f[a], f[b]));
+      for (int c = b + 1; c < k; ++c) search.consider(cross(f[b] - f[a], f[c] - f[a]));
     }
   }
-  if (k == 1) best.visibility = 1.0;
-  best.feasible = false;
-  return best;
+  return search.result();
+}
+
+// The optimum is -(the unit outward normal of the hull facet nearest to the origin) when
+// the origin lies inside conv{f_i} (the support function's least value on the sphere is
+// the distance to the nearest facet plane), and the direction of the hull's point
+// nearest to the origin otherwise: a facet normal, an edge's midpoint f_a + f_b (the
+// normals are unit) or a vertex f_a. So the candidates of the enumeration built from
+// the hull's vertices, edges and facets suffice; they are offered in the enumeration's
+// order, so that equal margins keep the same direction.
+MostVisibleResult best_margin_direction(const Vec3* f, int k) {
+  thread_local std::vector<std::array<int, 3>> facets;
+  if (!detail::normal_hull_facets(f, k, &facets)) return best_margin_direction_by_enumeration(f, k);
+  // Candidates keyed (a, b, c) as the enumeration meets them: a vertex (a, -1, -1), an
+  // edge (a, b, -1), a facet (a, b, c), a < b < c.
+  thread_local std::vector<std::array<int, 3>> keys;
+  keys.clear();
+  for (int a = 0; a < k; ++a) keys.push_back({a, -1, -1});
+  for (std::array<int, 3> t : facets) {
+    std::sort(t.begin(), t.end());
+    if (t[0] == t[1] || t[1] == t[2]) continue;
+    keys.push_back(t);
+    keys.push_back({t[0], t[1], -1});
+    keys.push_back({t[0], t[2], -1});
+    keys.push_back({t[1], t[2], -1});
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  MarginSearch search(f, k);
+  for (const auto& [a, b, c] : keys) {
+    if (b < 0) {
+      search.consider(f[a]);
+    } else if (c < 0) {
+      search.consider(f[a] + f[b]);
+    } else {
+      search.consider(cross(f[b] - f[a], f[c] - f[a]));
+    }
+  }
+  return search.result();
 }
 
 MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k, const Tolerances& tol) {

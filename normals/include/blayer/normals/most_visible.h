@@ -37,10 +37,15 @@ MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& to
 MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k,
                                               const Tolerances& tol = default_tolerances());
 
-// max over unit n of min_i n.f_i with its maximiser, by direct candidate evaluation
-// (facet normals of conv{f_i}, pair bisectors, single faces). Exact for any input,
-// O(k^4); used when no visible direction exists.
+// max over unit n of min_i n.f_i with its maximiser (the graded margin of a fan with no
+// visible direction), by direct evaluation of the candidates built from the vertices,
+// edges and facets of conv{f_i} (exact predicates), O(k^2) after an O(k log k) hull;
+// normals that span no volume go to the enumeration below. Used when no visible
+// direction exists.
 MostVisibleResult best_margin_direction(const Vec3* f, int k);
+// The same from every single face, pair and triple (facet normals, pair bisectors and
+// great circles, single faces): O(k^4), the oracle of the above.
+MostVisibleResult best_margin_direction_by_enumeration(const Vec3* f, int k);
 
 // Wolfe's algorithm alone: kCertified with the certified min-norm point in *out (whose
 // evaluated V may still fall below tol.min_visibility by rounding: out->feasible), or

@@ -1,0 +1,22 @@
+// The convex hull of a fan's unit face normals, for the margin of a fan with no visible
+// direction (most_visible.h, best_margin_direction): its facets, as triples of indices
+// into the normals. Internal to blayer_normals; the only translation unit of the module
+// that includes CGAL.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "blayer/core/vec3.h"
+
+namespace blayer {
+namespace detail {
+
+// The triangles of the hull of f[0..k-1] (coplanar facets triangulated), wound with
+// their normals pointing out of the hull; a repeated point is named by one of its
+// indices. Returns false, leaving *facets empty, when the points span no volume (k < 4,
+// all coplanar): the hull then has no facets to speak of. Exact predicates.
+bool normal_hull_facets(const Vec3* f, int k, std::vector<std::array<int, 3>>* facets);
+
+}  // namespace detail
+}  // namespace blayer

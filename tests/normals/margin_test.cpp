@@ -1,0 +1,119 @@
+// The graded margin of a fan with no visible direction (best_margin_direction: the
+// candidates of the hull of the face normals) against the enumeration of every single
+// face, pair and triple (best_margin_direction_by_enumeration), on point sets that put
+// the origin inside the hull, just outside it, on it, and hulls with coplanar facets,
+// repeated normals and no volume.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "blayer/normals/most_visible.h"
+#include "cad_fans.h"
+#include "test_fans.h"
+
+namespace blayer {
+namespace {
+
+Vec3 random_unit(std::mt19937& rng) {
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (;;) {
+    const Vec3 v{g(rng), g(rng), g(rng)};
+    if (norm(v) > 1e-3) return normalized(v);
+  }
+}
+
+// Same margin as the enumeration (to rounding), and the returned unit normal attains it.
+void expect_same_margin(const std::vector<Vec3>& f, const std::string& what) {
+  const int k = static_cast<int>(f.size());
+  const MostVisibleResult hull = best_margin_direction(f.data(), k);
+  const MostVisibleResult all = best_margin_direction_by_enumeration(f.data(), k);
+  EXPECT_FALSE(hull.feasible) << what;
+  EXPECT_NEAR(hull.visibility, all.visibility, 1e-12) << what;
+  EXPECT_NEAR(norm(hull.normal), 1.0, 1e-15) << what;
+  double attained = HUGE_VAL;
+  for (const Vec3& x : f) attained = std::min(attained, dot(x, hull.normal));
+  EXPECT_NEAR(attained, hull.visibility, 1e-15) << what;
+}
+
+TEST(BestMargin, MatchesTheEnumerationWithTheOriginInsideTheHull) {
+  std::mt19937 rng(7);
+  int inside = 0;
+  for (int k : {4, 5, 8, 13, 21, 34})
+    for (int t = 0; t < 20; ++t) {
+      std::vector<Vec3> f;
+      for (int i = 0; i < k; ++i) f.push_back(random_unit(rng));
+      const MostVisibleResult all = best_margin_direction_by_enumeration(f.data(), k);
+      inside += all.visibility < 0.0;
+      expect_same_margin(f, "k " + std::to_string(k) + " #" + std::to_string(t));
+    }
+  EXPECT_GT(inside, 60);  // most random sets surround the origin
+}
+
+// Normals within a cap of half-angle just above or below 90 degrees: the origin lies
+// just inside or just outside the hull, and the nearest hull point can be a facet, an
+// edge or a vertex.
+TEST(BestMargin, MatchesTheEnumerationWithTheOriginNearTheHull) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int outside = 0;
+  for (double rim : {-1e-3, -1e-6, 1e-6, 1e-3})
+    for (int k : {4, 6, 10, 16})
+      for (int t = 0; t < 10; ++t) {
+        std::vector<Vec3> f;
+        for (int i = 0; i < k; ++i) {
+          // Directions at elevation `rim` above the equator (a few) or higher up.
+          const double phi = 2.0 * M_PI * u(rng);
+          const double z = i < 3 ? rim : rim + 0.3 * u(rng);
+          const double r = std::sqrt(1.0 - z * z);
+          f.push_back({r * std::cos(phi), r * std::sin(phi), z});
+        }
+        outside += best_margin_direction_by_enumeration(f.data(), k).visibility > 0.0;
+        expect_same_margin(f, "rim " + std::to_string(rim) + " k " + std::to_string(k) + " #" + std::to_string(t));
+      }
+  EXPECT_GT(outside, 20);
+}
+
+// The cube's corner directions (four coplanar on each face of their hull), the
+// octahedron's with repeats, a great circle and a small circle (no volume: the
+// enumeration's own path), and a pair of opposite normals with a third.
+TEST(BestMargin, MatchesTheEnumerationOnDegenerateHulls) {
+  std::vector<Vec3> cube;
+  for (int m = 0; m < 8; ++m) cube.push_back(normalized(Vec3{m & 1 ? 1.0 : -1.0, m & 2 ? 1.0 : -1.0, m & 4 ? 1.0 : -1.0}));
+  expect_same_margin(cube, "cube corners");
+  std::vector<Vec3> octa = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, 0, -1}};
+  expect_same_margin(octa, "octahedron with repeats");
+  std::vector<Vec3> great, small;
+  for (int i = 0; i < 9; ++i) {
+    const double a = 2.0 * M_PI * i / 9.0;
+    great.push_back({std::cos(a), std::sin(a), 0.0});
+    small.push_back(normalized(Vec3{std::cos(a), std::sin(a), -0.2}));
+  }
+  expect_same_margin(great, "great circle");
+  expect_same_margin(small, "small circle");
+  expect_same_margin({{0, 0, 1}, {0, 0, -1}, {1, 0, 0}}, "opposite pair");
+}
+
+// The face normals of CAD-like fans of valence 12 to 60 (thin fan triangles: many nearly
+// equal normals), whether or not they have a visible direction.
+TEST(BestMargin, MatchesTheEnumerationOnCadLikeFans) {
+  using testing_fans::CadShape;
+  std::mt19937 rng(2027);
+  int n = 0;
+  for (int valence : {12, 24, 40, 60})
+    for (double offset : {0.0, 1e-5, 1e-3})
+      for (CadShape shape : {CadShape::kRidge, CadShape::kCorner, CadShape::kRim, CadShape::kSliver})
+        for (int t = 0; t < 2; ++t) {
+          const FanGeometry g = testing_fans::geometry(testing_fans::cad_like_fan(rng, shape, valence, offset));
+          if (g.any_degenerate) continue;
+          ++n;
+          expect_same_margin(g.face_normals, std::string(testing_fans::cad_shape_name(shape)) + " k " +
+                                                 std::to_string(valence) + " offset " + std::to_string(offset));
+        }
+  EXPECT_GT(n, 80);
+}
+
+}  // namespace
+}  // namespace blayer
