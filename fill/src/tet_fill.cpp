@@ -4,6 +4,7 @@
 #include <sstream>
 #include <string>
 
+#include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
 #include "blayer/core/stopwatch.h"
 #include "farfield.h"
@@ -49,6 +50,22 @@ SizeField envelope_size_field(const TriSurface& envelope, const UsedPoints& used
     sizes.push_back(h[i]);
   }
   return SizeField(std::move(sites), std::move(sizes), opt.growth - 1.0);
+}
+
+// TetGen's size at each PLC point (switch m, a circumradius): the outer boundary's own
+// size where it gives one (a half model's plane facet points), else the field's.
+std::vector<double> point_metrics(const FillPlc& plc, const OuterBoundary& outer, const SizeField& size) {
+  BLAYER_ASSERT(outer.point_size.empty() || outer.point_size.size() == outer.surface.points.size());
+  const std::size_t n_envelope = plc.envelope.used.size();
+  std::vector<double> metric;
+  metric.reserve(plc.points.size());
+  for (std::size_t j = 0; j < plc.points.size(); ++j) {
+    const int outer_point = j < n_envelope ? -1 : plc.farfield.used[j - n_envelope];
+    const bool sized_by_outer =
+        outer_point >= 0 && !outer.point_size.empty() && outer.point_size[outer_point] > 0.0;
+    metric.push_back(kRegularTetCircumradius * (sized_by_outer ? outer.point_size[outer_point] : size(plc.points[j])));
+  }
+  return metric;
 }
 
 void bounding_box(const TriSurface& s, const std::vector<int>& used, Vec3* lo, Vec3* hi) {
@@ -129,15 +146,7 @@ FillResult fill_with_tets(const TriSurface& envelope, const FillOptions& opt) {
       half ? closed_body_hole_points(envelope, norm(hi - lo)) : hole_points(envelope, parts, outside, norm(hi - lo));
   for (const Vec3& h : holes) plc.tetgen.holes.insert(plc.tetgen.holes.end(), h.begin(), h.end());
   st.n_holes = static_cast<std::int64_t>(holes.size());
-  // Each point's target size: its own where the outer boundary gives one (the plane
-  // facet's points), else the field's.
-  const std::size_t n_env_local = plc.envelope.used.size();
-  for (std::size_t j = 0; j < plc.points.size(); ++j) {
-    const int outer_point = j < n_env_local ? -1 : plc.farfield.used[j - n_env_local];
-    const bool own = outer_point >= 0 && !outer.point_size.empty() && outer.point_size[outer_point] > 0.0;
-    plc.tetgen.point_metric.push_back(kRegularTetCircumradius *
-                                      (own ? outer.point_size[outer_point] : size(plc.points[j])));
-  }
+  plc.tetgen.point_metric = point_metrics(plc, outer, size);
 
   const Stopwatch tetgen_time;
   const TetgenMesh mesh =

@@ -152,12 +152,14 @@ MostVisibleResult best_margin_direction_by_enumeration(const Vec3* f, int k) {
 }
 
 // The optimum is -(the unit outward normal of the hull facet nearest to the origin) when
-// the origin lies inside conv{f_i} (the support function's least value on the sphere is
-// the distance to the nearest facet plane), and the direction of the hull's point
-// nearest to the origin otherwise: a facet normal, an edge's midpoint f_a + f_b (the
-// normals are unit) or a vertex f_a. So the candidates of the enumeration built from
-// the hull's vertices, edges and facets suffice; they are offered in the enumeration's
-// order, so that equal margins keep the same direction.
+// the origin lies inside conv{f_i} or on its boundary (the support function's least
+// value on the sphere is the distance to the nearest facet plane), and the direction of
+// the hull's point nearest to the origin otherwise: a facet normal, or an edge's
+// midpoint f_a + f_b (the normals are unit; a vertex f_a is nearest only when every
+// normal equals it, which spans no volume). So the enumeration's candidates built from
+// the hull's edges and facets suffice; the vertices are offered too, and all in the
+// enumeration's order, so that the first of equal margins is the enumeration's unless
+// its winner was a candidate off the hull (equal to rounding).
 MostVisibleResult best_margin_direction(const Vec3* f, int k) {
   thread_local std::vector<std::array<int, 3>> facets;
   if (!detail::normal_hull_facets(f, k, &facets)) return best_margin_direction_by_enumeration(f, k);

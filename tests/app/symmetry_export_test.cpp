@@ -36,8 +36,8 @@ std::string half_sphere_off() {
 
 // The cell count of blayer extrude's "check: N cells" line.
 long cells_written(const std::string& out) {
-  const std::size_t at = out.find("check: ");
-  return at == std::string::npos ? -1 : std::stol(out.substr(at + 7));
+  const std::size_t at = out.find("\ncheck: ");
+  return at == std::string::npos ? -1 : std::stol(out.substr(at + 8));
 }
 
 // Area of a planar polygon face in the plane z = 0.
@@ -107,8 +107,8 @@ TEST(SymmetryExport, HalfSphereHybridTilesThePlaneAndPassesCheckMesh) {
 
 // The half model is meshed for half the cost of the full one: its fill must not be
 // denser along the plane than the mirrored model's, where no boundary lies (the plane
-// facet is sized for that, src/half_domain.h). Measured: 0.41 to 0.43 at farfield
-// scales 4, 4.001 and 3.999; with the facet sized by the plain size field, 0.54.
+// facet is sized for that, src/half_domain.h). Measured with the CLI: 0.41 to 0.43 at
+// farfield scales 4, 4.001 and 3.999; with the facet sized by the plain field, 0.54.
 // TetGen's count moves by a few per cent with any change of its input, hence the bounds
 // rather than a figure.
 TEST(SymmetryExport, AHalfSpheresFillHasAboutHalfTheCellsOfTheFullSpheres) {

@@ -194,6 +194,15 @@ TEST(HybridMesh, HalfModelBoundaryListsTheLayersFacesInThePlaneSoTheSymmetryTria
   const double cut = 0.5 * n_lon * std::sin(2 * M_PI / n_lon);  // the wall's equator polygon
   const double box_face = (hi_x - lo_x) * (hi_y - lo_y);
   EXPECT_NEAR(area + cut, box_face, 1e-12 * box_face);
+
+  // All the markers' triangles close the domain: every edge once in each direction.
+  std::map<std::pair<int, int>, int> directed;
+  for (const Triangle& t : b.surface.triangles)
+    for (int e = 0; e < 3; ++e) ++directed[{t[e], t[(e + 1) % 3]}];
+  for (const auto& [edge, count] : directed) {
+    ASSERT_EQ(count, 1) << "edge " << edge.first << "-" << edge.second;
+    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u) << "edge " << edge.first << "-" << edge.second;
+  }
 }
 
 TEST(HybridMesh, InternalFlowBoundaryIsTheWallAloneFacingOutOfThePipe) {

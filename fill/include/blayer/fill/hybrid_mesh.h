@@ -52,8 +52,10 @@ struct MarkedBoundary {
 // list of blayer: io/mesh_faces.h), on the mesh's points, every triangle oriented outward: its
 // right-hand normal points out of the meshed domain (into the body at the wall, away
 // from the domain at the farfield), the convention of solver boundary faces. The
-// triangles then close the domain, the plane included. For region inside (internal
-// flow) the boundary is the wall alone. fill_to_mesh is what append_fill returned.
+// triangles then close the domain, the plane included. A face is in the plane when its
+// points are exactly on it: the fill takes coordinate planes only, on which the layers'
+// points are exact. For region inside (internal flow) the boundary is the wall alone.
+// fill_to_mesh is what append_fill returned.
 MarkedBoundary hybrid_boundary(const VolumeMesh& mesh, const TriSurface& wall, const FillResult& fill,
                                const std::vector<std::int64_t>& fill_to_mesh, const SymmetryPlane* plane = nullptr);
 

@@ -12,11 +12,12 @@
 // No visible direction: when 0 lies in conv{f_i} (Gordan) or V* < tol.min_visibility,
 // feasible is false and the result is the direction of best margin
 // max_n min_i n.f_i = -dist(0, boundary of conv{f_i}) <= 0 (or the tiny V*), found by
-// evaluating every facet-normal, pair-bisector and single-face direction; it is never a
-// silent arbitrary vector.
+// evaluating the directions of the hull's facets and edges (best_margin_direction); it
+// is never a silent arbitrary vector.
 //
 // Input: k >= 1 unit vectors. Cost O(k) per Wolfe step (a few steps in practice);
-// O(k^4) for the enumeration and margin fallbacks.
+// O(k^4) for the enumeration fallback, O(k^2) after a hull for the margin (O(k^4) when
+// the normals span no volume).
 #pragma once
 
 #include <vector>
