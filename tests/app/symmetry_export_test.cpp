@@ -2,6 +2,11 @@
 // the half domain, the symmetry patch in the solver formats, and the plane tiled
 // exactly by the symmetry faces and the body's cut.
 #include <gtest/gtest.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
 
 #include <cmath>
 #include <fstream>
@@ -56,7 +61,7 @@ TEST(SymmetryExport, HalfSphereHybridTilesThePlaneAndPassesCheckMesh) {
   const std::string surface = dir.write("half.off", half_sphere_off());
   const std::string vtu = dir.file("half.vtu");
   const auto r = run_blayer("extrude " + surface + " --layers 3 --first-height 0.01 --growth-ratio 1.2 --fill "
-                            "--farfield-scale 4 -o " + vtu,
+                            "--farfield-scale 4 -o " + vtu + " --boundary " + dir.file("b.vtp"),
                             dir.file(""));
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("symmetry plane z = 0 (found)"), std::string::npos) << r.out;
@@ -87,6 +92,28 @@ TEST(SymmetryExport, HalfSphereHybridTilesThePlaneAndPassesCheckMesh) {
   const double cut = 0.5 * 20 * std::sin(2 * M_PI / 20);
   const double box = (hi_x - lo_x) * (hi_y - lo_y);
   EXPECT_NEAR(symmetry_area + cut, box, 1e-9 * box);
+
+  // The boundary file's marker-3 triangles are those faces: the facet's and the layers'
+  // side quads as two halves each.
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(dir.file("b.vtp").c_str());
+  reader->Update();
+  vtkPolyData* b = reader->GetOutput();
+  vtkDataArray* marker = b->GetCellData()->GetArray("marker");
+  ASSERT_NE(marker, nullptr);
+  double marked_area = 0.0;
+  for (vtkIdType c = 0; c < b->GetNumberOfCells(); ++c) {
+    if (marker->GetTuple1(c) != 3.0) continue;
+    vtkIdType n = 0;
+    const vtkIdType* ids = nullptr;
+    b->GetCellPoints(c, n, ids);
+    ASSERT_EQ(n, 3);
+    double p[3][3];
+    for (int k = 0; k < 3; ++k) b->GetPoint(ids[k], p[k]);
+    ASSERT_TRUE(p[0][2] == 0.0 && p[1][2] == 0.0 && p[2][2] == 0.0) << "marker-3 triangle " << c << " off the plane";
+    marked_area += 0.5 * std::fabs((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]));
+  }
+  EXPECT_NEAR(marked_area + cut, box, 1e-9 * box);
 
   // The solver formats carry the symmetry patch; checkMesh accepts the mesh.
   const std::string case_dir = dir.file("case");
