@@ -143,14 +143,20 @@ std::unordered_map<std::int64_t, std::vector<int>> first_point_triangles(
     const VolumeMesh& mesh, const TriSurface& wall, const std::vector<std::vector<std::int64_t>>& starts) {
   const std::int64_t n_wall = static_cast<std::int64_t>(wall.points.size());
   std::unordered_map<std::int64_t, std::vector<int>> out;
-  for (const std::vector<std::int64_t>& s : starts)
-    if (s.size() > 1)
-      for (std::int64_t q : s) out[q];
+  std::vector<char> fan_point(wall.points.size(), 0);
+  for (std::size_t w = 0; w < starts.size(); ++w)
+    if (starts[w].size() > 1) {
+      fan_point[w] = 1;
+      for (std::int64_t q : starts[w]) out[q];
+    }
   if (out.empty()) return out;
+  // Only triangles at a fan point can be the base of a cell with an edge to a fan's first
+  // point (that edge leaves the fan point): the table holds those alone.
   std::map<TriangleKey, int> triangle_of;
   for (std::size_t t = 0; t < wall.triangles.size(); ++t) {
     const Triangle& w = wall.triangles[t];
-    triangle_of[sorted_triangle(w[0], w[1], w[2])] = static_cast<int>(t);
+    if (fan_point[w[0]] || fan_point[w[1]] || fan_point[w[2]])
+      triangle_of[sorted_triangle(w[0], w[1], w[2])] = static_cast<int>(t);
   }
   for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
     const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
