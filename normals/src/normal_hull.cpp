@@ -33,6 +33,8 @@ bool spans_volume(const std::vector<Point>& p) {
 bool normal_hull_facets(const Vec3* f, int k, std::vector<std::array<int, 3>>* facets) {
   facets->clear();
   if (k < 4) return false;
+  for (int i = 0; i < k; ++i)
+    if (!is_finite(f[i])) return false;  // CGAL's predicates assume finite coordinates
   std::vector<Point> points;
   points.reserve(k);
   std::map<Point, int> index;

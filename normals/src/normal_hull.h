@@ -15,7 +15,7 @@ namespace detail {
 // The triangles of the hull of f[0..k-1] (coplanar facets triangulated), wound with
 // their normals pointing out of the hull; a repeated point is named by one of its
 // indices. Returns false, leaving *facets empty, when the points span no volume (k < 4,
-// all coplanar): the hull then has no facets to speak of. Exact predicates.
+// all coplanar) or a coordinate is not finite. Exact predicates.
 bool normal_hull_facets(const Vec3* f, int k, std::vector<std::array<int, 3>>* facets);
 
 }  // namespace detail

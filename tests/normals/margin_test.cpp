@@ -12,6 +12,7 @@
 
 #include "blayer/normals/most_visible.h"
 #include "cad_fans.h"
+#include "normal_hull.h"
 #include "test_fans.h"
 
 namespace blayer {
@@ -98,6 +99,19 @@ TEST(BestMargin, MatchesTheEnumerationOnDegenerateHulls) {
   expect_same_margin(great, "great circle");
   expect_same_margin(small, "small circle");
   expect_same_margin({{0, 0, 1}, {0, 0, -1}, {1, 0, 0}}, "opposite pair");
+}
+
+// A normal that is not finite (no surface blayer accepts has one, but the function is
+// public) never reaches the hull's exact predicates: the enumeration takes the set.
+TEST(BestMargin, NonFiniteNormalsSkipTheHull) {
+  std::vector<std::array<int, 3>> facets;
+  const std::vector<Vec3> f = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, -1, -1}, {HUGE_VAL, 0, 0}};
+  EXPECT_FALSE(detail::normal_hull_facets(f.data(), 5, &facets));
+  EXPECT_TRUE(facets.empty());
+  const std::vector<Vec3> g = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {NAN, 0, 0}};
+  EXPECT_FALSE(detail::normal_hull_facets(g.data(), 4, &facets));
+  EXPECT_TRUE(detail::normal_hull_facets(f.data(), 4, &facets));  // the four finite ones
+  EXPECT_EQ(facets.size(), 4u);
 }
 
 // The face normals of CAD-like fans of valence 12 to 60 (thin fan triangles: many nearly
