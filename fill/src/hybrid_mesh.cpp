@@ -52,10 +52,11 @@ namespace {
 // the domain on one side only, so it is a boundary face.
 std::vector<Triangle> other_faces_in_plane(const VolumeMesh& mesh, const SymmetryPlane& plane,
                                            const std::vector<Triangle>& listed) {
-  std::set<TriangleKey> seen;
-  for (const Triangle& t : listed) seen.insert(sorted_triangle(t[0], t[1], t[2]));
   std::vector<char> on(mesh.points.size());
   for (std::size_t i = 0; i < on.size(); ++i) on[i] = plane.signed_distance(mesh.points[i]) == 0.0;
+  std::set<TriangleKey> seen;  // the listed triangles in the plane
+  for (const Triangle& t : listed)
+    if (on[t[0]] && on[t[1]] && on[t[2]]) seen.insert(sorted_triangle(t[0], t[1], t[2]));
   std::vector<Triangle> out;
   for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
     const std::int64_t* n = &mesh.connectivity[mesh.offsets[c]];

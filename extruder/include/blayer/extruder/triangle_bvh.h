@@ -103,6 +103,9 @@ class TriangleBvh {
   void for_each_overlapping_pair(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
                                  Visit&& visit) const {
     if (nodes_.empty() || !node_wanted[0]) return;
+    auto pair = [&](int i, int j) {
+      if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j])) visit(items_[i], items_[j]);
+    };
     // A pair (a, b) with a == b stands for the pairs inside node a.
     auto descend = [&](int a, int b, auto&& push) {
       const Node& na = nodes_[a];
@@ -111,9 +114,7 @@ class TriangleBvh {
       if (a == b) {
         if (na.count > 0) {
           for (int i = na.first; i < na.first + na.count; ++i)
-            for (int j = i + 1; j < na.first + na.count; ++j)
-              if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]))
-                visit(items_[i], items_[j]);
+            for (int j = i + 1; j < na.first + na.count; ++j) pair(i, j);
         } else {
           const int l = na.first, r = na.first + na.left_nodes;
           push(l, l);
@@ -122,9 +123,7 @@ class TriangleBvh {
         }
       } else if (na.count > 0 && nb.count > 0) {
         for (int i = na.first; i < na.first + na.count; ++i)
-          for (int j = nb.first; j < nb.first + nb.count; ++j)
-            if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]))
-              visit(items_[i], items_[j]);
+          for (int j = nb.first; j < nb.first + nb.count; ++j) pair(i, j);
       } else {
         split_pair(nodes_, a, nodes_, b, push);
       }
