@@ -17,7 +17,7 @@ packages=(
   libcli11-dev              # command line
   libtomlplusplus-dev       # case files
   nlohmann-json3-dev        # reports
-  libcgal-dev libgmp-dev libmpfr-dev  # exact orient3d
+  libcgal-dev libgmp-dev libmpfr-dev  # exact predicates: orient3d, the hull of face normals, the plane facet
   zlib1g-dev
   libxml2-utils             # tests: xmllint checks that every .vtu/.vtp is well-formed XML
   python3-meshio            # tests: meshio (run by /usr/bin/python3) as an independent .vtu, .su2 and .msh reader
