@@ -317,7 +317,8 @@ void SiteSubdivision::enumerate_new_subsets() {
 
 void SiteSubdivision::record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end) {
   Leaf leaf{cell.c, cell.rho, d, v, static_cast<int>(leaf_ids_.size()), 0, 0,
-            static_cast<int>(leaf_points_.size()), static_cast<int>(leaf_arcs_.size()), faces_end - faces_begin};
+            static_cast<int>(leaf_points_.size()), static_cast<int>(leaf_arcs_.size()), faces_end - faces_begin,
+            cos_bound(cell.rho + kBoundMargin)};
   leaf_ids_.insert(leaf_ids_.end(), leaf_points_.begin(), leaf_points_.end());
   leaf.arcs_begin = static_cast<int>(leaf_ids_.size());
   leaf_ids_.insert(leaf_ids_.end(), leaf_arcs_.begin(), leaf_arcs_.end());
@@ -331,7 +332,7 @@ void SiteSubdivision::record_leaf(const Cell& cell, double d, double v, int face
 void SiteSubdivision::offer(const Leaf& leaf, const Vec3& n) {
   const double len = norm(n);
   if (!(len > 0.0) || !std::isfinite(len)) return;
-  if (dot(n, leaf.c) < cos_bound(leaf.rho + kBoundMargin) * len) return;
+  if (dot(n, leaf.c) < leaf.cos_reach * len) return;
   offer_anywhere(n);
 }
 
@@ -364,7 +365,7 @@ void SiteSubdivision::plateau_peaks() {
     for (const PlateauCircle& circ : circles) {
       if (std::fabs(dot(leaf.c, circ.h) - circ.c0) > leaf.rho + kBoundMargin) continue;
       plateau_envelope_peaks(g_, circ, leaf_ids_.data() + leaf.faces_begin, leaf.n_faces, leaf.c,
-                             cos_bound(leaf.rho + kBoundMargin), &ca, &cb, &cc, emit);
+                             leaf.cos_reach, &ca, &cb, &cc, emit);
     }
   }
 }
