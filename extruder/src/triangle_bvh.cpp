@@ -3,6 +3,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace blayer {
 
 namespace {
@@ -11,15 +14,158 @@ namespace {
 // outweighs the work.
 constexpr int kParallelBuildItems = 1 << 14;
 
-// The split sizes depend only on the item count, so so does the node count: this lets
-// both halves be written concurrently into preassigned node ranges.
-int node_count(int n) {
-  if (n <= TriangleBvh::kLeafSize) return 1;
-  const int l = n / 2;
-  return 1 + node_count(l) + node_count(n - l);
+// Centroid bins per axis of the surface-area split (16 is the usual choice: more bins
+// refine the split little, fewer coarsen it on graded meshes).
+constexpr int kSplitBins = 16;
+
+double surface_area(const Box& b) {
+  const double x = b.hi[0] - b.lo[0], y = b.hi[1] - b.lo[1], z = b.hi[2] - b.lo[2];
+  return x * y + y * z + z * x;
+}
+
+void unite(Box* a, const Box& b) {
+  for (int k = 0; k < 3; ++k) {
+    a->lo[k] = std::min(a->lo[k], b.lo[k]);
+    a->hi[k] = std::max(a->hi[k], b.hi[k]);
+  }
 }
 
 }  // namespace
+
+// Builds the subtree of items[first, first + count) in preorder into `nodes` (node
+// indices from 0, items' indices absolute); the caller shifts the inner nodes' child
+// indices when it places the subtree.
+//
+// Why the surface-area split rather than the median: on surfaces that mix long, thin
+// triangles with small ones (the pyHyp wings' trailing edges and tips), a median split
+// puts long boxes into many nodes, whose boxes then overlap widely; the surface-area
+// heuristic (binned, over all three axes) keeps them together. The result is still a
+// pure function of the input.
+struct TriangleBvh::Builder {
+  const std::vector<Box>& boxes;
+  const std::vector<Vec3>& centre;
+  std::vector<int>& items;
+
+  void build(int first, int count, std::vector<Node>* nodes) const {
+    const int node = static_cast<int>(nodes->size());
+    nodes->emplace_back();
+    Box b = boxes[items[first]];
+    Box cb{centre[items[first]], centre[items[first]]};
+    for (int i = first + 1; i < first + count; ++i) {
+      unite(&b, boxes[items[i]]);
+      unite(&cb, Box{centre[items[i]], centre[items[i]]});
+    }
+    (*nodes)[node].box = b;
+    if (count <= kLeafSize) {
+      (*nodes)[node].first = first;
+      (*nodes)[node].count = count;
+      return;
+    }
+    const int l = split(first, count, cb);
+    (*nodes)[node].count = 0;
+    (*nodes)[node].first = node + 1;
+    if (count > kParallelBuildItems) {
+      std::vector<Node> left, right;
+      tbb::parallel_invoke([&] { build(first, l, &left); }, [&] { build(first + l, count - l, &right); });
+      append(left, node + 1, nodes);
+      (*nodes)[node].left_nodes = static_cast<int>(left.size());
+      append(right, static_cast<int>(nodes->size()), nodes);
+    } else {
+      build(first, l, nodes);
+      (*nodes)[node].left_nodes = static_cast<int>(nodes->size()) - node - 1;
+      build(first + l, count - l, nodes);
+    }
+  }
+
+  // Appends a subtree built from index 0, placed at `offset`.
+  static void append(const std::vector<Node>& sub, int offset, std::vector<Node>* nodes) {
+    for (Node nd : sub) {
+      if (nd.count == 0) nd.first += offset;
+      nodes->push_back(nd);
+    }
+  }
+
+  // Reorders items[first, first + count) so that the left child takes the first l of
+  // them, and returns l (0 < l < count): the binned surface-area split of least
+  // area(left) * n_left + area(right) * n_right, or the median of the longest centroid
+  // axis when all centroids share one bin.
+  int split(int first, int count, const Box& cb) const {
+    double best_cost = HUGE_VAL;
+    int best_axis = -1, best_bin = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double lo = cb.lo[axis], ext = cb.hi[axis] - lo;
+      if (!(ext > 0.0)) continue;
+      Box bin_box[kSplitBins];
+      int bin_count[kSplitBins] = {};
+      for (int i = first; i < first + count; ++i) {
+        const int bin = bin_of(items[i], axis, lo, ext);
+        if (bin_count[bin]++ == 0) {
+          bin_box[bin] = boxes[items[i]];
+        } else {
+          unite(&bin_box[bin], boxes[items[i]]);
+        }
+      }
+      // right_area[i]: the bins after i together.
+      double right_area[kSplitBins];
+      int right_count[kSplitBins];
+      Box acc;
+      int n = 0;
+      for (int bin = kSplitBins - 1; bin > 0; --bin) {
+        if (bin_count[bin] > 0) {
+          if (n == 0) {
+            acc = bin_box[bin];
+          } else {
+            unite(&acc, bin_box[bin]);
+          }
+          n += bin_count[bin];
+        }
+        right_area[bin - 1] = n > 0 ? surface_area(acc) : 0.0;
+        right_count[bin - 1] = n;
+      }
+      n = 0;
+      for (int bin = 0; bin < kSplitBins - 1; ++bin) {
+        if (bin_count[bin] > 0) {
+          if (n == 0) {
+            acc = bin_box[bin];
+          } else {
+            unite(&acc, bin_box[bin]);
+          }
+          n += bin_count[bin];
+        }
+        if (n == 0 || right_count[bin] == 0) continue;
+        const double cost = surface_area(acc) * n + right_area[bin] * right_count[bin];
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_axis = axis;
+          best_bin = bin;
+        }
+      }
+    }
+    if (best_axis >= 0) {
+      const double lo = cb.lo[best_axis], ext = cb.hi[best_axis] - lo;
+      const auto mid = std::partition(items.begin() + first, items.begin() + first + count,
+                                      [&](int it) { return bin_of(it, best_axis, lo, ext) <= best_bin; });
+      return static_cast<int>(mid - (items.begin() + first));
+    }
+    // All centroids in one bin of every axis (they coincide or nearly): halve.
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (cb.hi[k] - cb.lo[k] > cb.hi[axis] - cb.lo[axis]) axis = k;
+    const int l = count / 2;
+    // Ties broken by id so the split is a pure function of the input.
+    std::nth_element(items.begin() + first, items.begin() + first + l, items.begin() + first + count,
+                     [&](int a, int b) {
+                       const double ca = centre[a][axis], cb2 = centre[b][axis];
+                       return ca < cb2 || (ca == cb2 && a < b);
+                     });
+    return l;
+  }
+
+  int bin_of(int item, int axis, double lo, double ext) const {
+    const int bin = static_cast<int>((centre[item][axis] - lo) / ext * kSplitBins);
+    return std::clamp(bin, 0, kSplitBins - 1);
+  }
+};
 
 void TriangleBvh::build(const std::vector<Box>& boxes) {
   const int n = static_cast<int>(boxes.size());
@@ -28,61 +174,12 @@ void TriangleBvh::build(const std::vector<Box>& boxes) {
   item_box_.clear();
   if (n == 0) return;
   for (int i = 0; i < n; ++i) items_[i] = i;
-  nodes_.resize(node_count(n));
   std::vector<Vec3> centre(n);
   for (int i = 0; i < n; ++i) centre[i] = 0.5 * (boxes[i].lo + boxes[i].hi);
-
-  // Builds the subtree of items_[first, first+count) into nodes_[node ...].
-  struct Builder {
-    const std::vector<Box>& boxes;
-    const std::vector<Vec3>& centre;
-    std::vector<Node>& nodes;
-    std::vector<int>& items;
-
-    void operator()(int node, int first, int count) const {
-      Node& nd = nodes[node];
-      Box b = boxes[items[first]];
-      Box cb{centre[items[first]], centre[items[first]]};
-      for (int i = first + 1; i < first + count; ++i) {
-        const Box& x = boxes[items[i]];
-        const Vec3& c = centre[items[i]];
-        for (int k = 0; k < 3; ++k) {
-          b.lo[k] = std::min(b.lo[k], x.lo[k]);
-          b.hi[k] = std::max(b.hi[k], x.hi[k]);
-          cb.lo[k] = std::min(cb.lo[k], c[k]);
-          cb.hi[k] = std::max(cb.hi[k], c[k]);
-        }
-      }
-      nd.box = b;
-      if (count <= kLeafSize) {
-        nd.first = first;
-        nd.count = count;
-        return;
-      }
-      int axis = 0;
-      for (int k = 1; k < 3; ++k)
-        if (cb.hi[k] - cb.lo[k] > cb.hi[axis] - cb.lo[axis]) axis = k;
-      const int l = count / 2;
-      // Ties broken by id so the split is a pure function of the input.
-      std::nth_element(items.begin() + first, items.begin() + first + l, items.begin() + first + count,
-                       [&](int a, int b2) {
-                         const double ca = centre[a][axis], cb2 = centre[b2][axis];
-                         return ca < cb2 || (ca == cb2 && a < b2);
-                       });
-      const int left_nodes = node_count(l);
-      nd.count = 0;
-      nd.first = node + 1;
-      nd.left_nodes = left_nodes;
-      if (count > kParallelBuildItems) {
-        tbb::parallel_invoke([&] { (*this)(node + 1, first, l); },
-                             [&] { (*this)(node + 1 + left_nodes, first + l, count - l); });
-      } else {
-        (*this)(node + 1, first, l);
-        (*this)(node + 1 + left_nodes, first + l, count - l);
-      }
-    }
-  };
-  Builder{boxes, centre, nodes_, items_}(0, 0, n);
+  Builder{boxes, centre, items_}.build(0, n, &nodes_);
+  // The node count is known only now (leaves hold 1 to kLeafSize items); the trees are
+  // copied per front, so their spare capacity would be held several times.
+  nodes_.shrink_to_fit();
   item_box_.resize(n);
   for (int i = 0; i < n; ++i) item_box_[i] = boxes[items_[i]];
 }
@@ -90,12 +187,6 @@ void TriangleBvh::build(const std::vector<Box>& boxes) {
 void TriangleBvh::refit(const std::vector<Box>& boxes) {
   const int n = static_cast<int>(items_.size());
   tbb::parallel_for(0, n, [&](int i) { item_box_[i] = boxes[items_[i]]; });
-  auto unite = [](Box* a, const Box& b) {
-    for (int k = 0; k < 3; ++k) {
-      a->lo[k] = std::min(a->lo[k], b.lo[k]);
-      a->hi[k] = std::max(a->hi[k], b.hi[k]);
-    }
-  };
   // Nodes are in preorder (children after their parent), so a reverse sweep sees both
   // children of a node before the node itself.
   for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i) {

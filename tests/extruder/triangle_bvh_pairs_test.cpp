@@ -1,5 +1,6 @@
 // The BVH's pair traversals (TriangleBvh::for_each_overlapping_pair) against the
-// brute-force oracle: every pair of boxes tested against every other. Boxes come as the
+// brute-force oracle: every pair of boxes tested against every other; and its segment
+// queries against every box's slab test. Boxes come as the
 // extruder makes them (a wavy sheet of triangles and the same sheet lifted by less than
 // a triangle's size, so that most boxes overlap several others) and at random; the
 // wanted masks are all, none and random.
@@ -137,6 +138,73 @@ TEST(TriangleBvhPairs, RefittedTreesFindTheNewOverlaps) {
   EXPECT_TRUE(two.pairs == brute_pairs(moved, wanted, wall));
   EXPECT_TRUE(self.pairs == brute_self_pairs(moved, wanted));
   EXPECT_EQ(two.repeats + self.repeats, 0);
+}
+
+TEST(TriangleBvhPairs, TreesLargeEnoughToBeBuiltInParallelFindEveryOverlapOnce) {
+  // Above 2^14 items the two halves of a node are built concurrently and spliced.
+  const std::vector<Box> wall = sheet_boxes(92, 0.0, 0.5);
+  const std::vector<Box> front = sheet_boxes(92, 0.3, 0.5);
+  ASSERT_GT(front.size(), 16384u);
+  std::mt19937 rng(5);
+  expect_same_pairs_as_brute_force(front, wall, random_mask(rng, static_cast<int>(front.size()), 0.02));
+}
+
+TEST(TriangleBvhPairs, MixedLongAndSmallBoxesFindEveryOverlapOnce) {
+  // Long, thin boxes among small ones (trailing-edge slivers beside a fine mesh): the
+  // case the surface-area split separates.
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> at(0.0, 10.0), small(0.0, 0.3), along(3.0, 9.0);
+  std::vector<Box> a = random_boxes(rng, 300);
+  for (int i = 0; i < 100; ++i) {
+    Box b;
+    const int axis = i % 3;
+    for (int k = 0; k < 3; ++k) {
+      b.lo[k] = at(rng);
+      b.hi[k] = b.lo[k] + (k == axis ? along(rng) : small(rng));
+    }
+    a.push_back(b);
+  }
+  std::shuffle(a.begin(), a.end(), rng);
+  const std::vector<Box> b = random_boxes(rng, 500);
+  expect_same_pairs_as_brute_force(a, b, std::vector<char>(a.size(), 1));
+  expect_same_pairs_as_brute_force(a, b, random_mask(rng, static_cast<int>(a.size()), 0.3));
+}
+
+// Whether the segment o + t d, t in [0, t_max], meets the box (slabs, d with no zero
+// component).
+bool brute_segment_hits(const Vec3& o, const Vec3& d, double t_max, const Box& b) {
+  double t0 = 0.0, t1 = t_max;
+  for (int k = 0; k < 3; ++k) {
+    double a = (b.lo[k] - o[k]) / d[k], c = (b.hi[k] - o[k]) / d[k];
+    if (a > c) std::swap(a, c);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, c);
+  }
+  return t0 <= t1;
+}
+
+TEST(TriangleBvhSegments, EverySegmentVisitsExactlyTheBoxesItCrosses) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> at(0.0, 10.0), dir(-1.0, 1.0), len(0.1, 6.0);
+  for (int n : {1, 7, 900, 20000}) {
+    const std::vector<Box> boxes = random_boxes(rng, n);
+    TriangleBvh tree;
+    tree.build(boxes);
+    for (int q = 0; q < 50; ++q) {
+      const Vec3 o{at(rng), at(rng), at(rng)};
+      Vec3 d{dir(rng), dir(rng), dir(rng)};
+      if (d[0] == 0.0 || d[1] == 0.0 || d[2] == 0.0) continue;
+      const double t_max = len(rng);
+      std::set<int> seen, expected;
+      int repeats = 0;
+      tree.for_each_on_segment(o, d, t_max, [&](int i, double*) { repeats += !seen.insert(i).second; });
+      for (int i = 0; i < n; ++i)
+        if (brute_segment_hits(o, d, t_max, boxes[i])) expected.insert(i);
+      EXPECT_EQ(repeats, 0);
+      EXPECT_TRUE(seen == expected) << n << " boxes, query " << q << ": " << seen.size() << " against "
+                                    << expected.size();
+    }
+  }
 }
 
 }  // namespace

@@ -2,10 +2,10 @@
 // extruder's proximity rays and the envelope intersection checks.
 //
 // Why not CGAL's AABB tree: it would pull CGAL (~30 s, ~1 GB per translation unit) into
-// the extruder for two simple queries. This tree is a median split on the longest axis
-// of the centroid bounds, leaves of <= kLeafSize boxes, built in O(n log n) with the top
-// levels in parallel; the layout depends only on the input, so queries and everything
-// derived from them are deterministic. Rebuilding it per layer is cheap next to the
+// the extruder for two simple queries. This tree is split by the binned surface-area
+// heuristic (triangle_bvh.cpp says why), leaves of <= kLeafSize boxes, built in
+// O(n log n) with the top levels in parallel; the layout depends only on the input, so
+// queries and everything derived from them are deterministic. Rebuilding it per layer is cheap next to the
 // normal solve (see bench/extruder). Each leaf item's own box is stored next to it and
 // tested before the item is visited: a leaf's box is the union of up to kLeafSize
 // boxes, so without this most visited items would not overlap the query at all and
@@ -189,6 +189,7 @@ class TriangleBvh {
   static void parallel_pairs(const std::vector<std::pair<int, int>>& seeds,
                              const std::function<void(int, int)>& fn);
 
+  struct Builder;
   struct Node {
     Box box;
     int first = 0;       // leaf: first index into items_; inner: index of the left child
