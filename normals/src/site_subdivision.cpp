@@ -332,7 +332,7 @@ void SiteSubdivision::record_leaf(const Cell& cell, double d, double v, int face
 void SiteSubdivision::offer(const Leaf& leaf, const Vec3& n) {
   const double len = norm(n);
   if (!(len > 0.0) || !std::isfinite(len)) return;
-  if (dot(n, leaf.c) < leaf.cos_reach * len) return;
+  if (dot(n, leaf.c) < leaf.cos_cap * len) return;
   offer_anywhere(n);
 }
 
@@ -365,7 +365,7 @@ void SiteSubdivision::plateau_peaks() {
     for (const PlateauCircle& circ : circles) {
       if (std::fabs(dot(leaf.c, circ.h) - circ.c0) > leaf.rho + kBoundMargin) continue;
       plateau_envelope_peaks(g_, circ, leaf_ids_.data() + leaf.faces_begin, leaf.n_faces, leaf.c,
-                             leaf.cos_reach, &ca, &cb, &cc, emit);
+                             leaf.cos_cap, &ca, &cb, &cc, emit);
     }
   }
 }

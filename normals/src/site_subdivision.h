@@ -87,9 +87,9 @@ class SiteSubdivision {
     double v;  // V(c)
     int points_begin, arcs_begin, faces_begin;  // into leaf_ids_
     int n_points, n_arcs, n_faces;
-    // Directions n in the leaf's cap have n.c >= cos_reach |n|: computed once per leaf,
+    // Directions n in the leaf's cap have n.c >= cos_cap |n|: computed once per leaf,
     // since the constraint-circle pass offers hundreds of candidates to some leaves.
-    double cos_reach;
+    double cos_cap;
   };
 
   Cell make_cell(int chart, double x0, double y0, double size) const;

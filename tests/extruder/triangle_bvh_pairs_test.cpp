@@ -5,6 +5,7 @@
 // a triangle's size, so that most boxes overlap several others) and at random; the
 // wanted masks are all, none and random.
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -170,12 +171,13 @@ TEST(TriangleBvhPairs, MixedLongAndSmallBoxesFindEveryOverlapOnce) {
   expect_same_pairs_as_brute_force(a, b, random_mask(rng, static_cast<int>(a.size()), 0.3));
 }
 
-// Whether the segment o + t d, t in [0, t_max], meets the box (slabs, d with no zero
-// component).
+// Whether the segment o + t d, t in [0, t_max], meets the box: the slab test with the
+// reciprocal direction, as the tree computes it (d with no zero component here).
 bool brute_segment_hits(const Vec3& o, const Vec3& d, double t_max, const Box& b) {
   double t0 = 0.0, t1 = t_max;
   for (int k = 0; k < 3; ++k) {
-    double a = (b.lo[k] - o[k]) / d[k], c = (b.hi[k] - o[k]) / d[k];
+    const double inv = 1.0 / d[k];
+    double a = (b.lo[k] - o[k]) * inv, c = (b.hi[k] - o[k]) * inv;
     if (a > c) std::swap(a, c);
     t0 = std::max(t0, a);
     t1 = std::min(t1, c);
@@ -183,27 +185,106 @@ bool brute_segment_hits(const Vec3& o, const Vec3& d, double t_max, const Box& b
   return t0 <= t1;
 }
 
+// The items a segment query visits, in visiting order, and whether any came twice.
+std::vector<int> visited_on_segment(const TriangleBvh& tree, const Vec3& o, const Vec3& d, double t_max,
+                                    bool* repeated) {
+  std::vector<int> order;
+  std::set<int> seen;
+  *repeated = false;
+  tree.for_each_on_segment(o, d, t_max, [&](int i, double*) {
+    order.push_back(i);
+    *repeated = *repeated || !seen.insert(i).second;
+  });
+  return order;
+}
+
+void expect_segment_visits_as_brute_force(const std::vector<Box>& boxes, const Vec3& o, const Vec3& d,
+                                          double t_max) {
+  TriangleBvh tree;
+  tree.build(boxes);
+  bool repeated = false;
+  const std::vector<int> order = visited_on_segment(tree, o, d, t_max, &repeated);
+  std::set<int> expected;
+  for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+    if (brute_segment_hits(o, d, t_max, boxes[i])) expected.insert(i);
+  EXPECT_FALSE(repeated);
+  EXPECT_TRUE(std::set<int>(order.begin(), order.end()) == expected)
+      << boxes.size() << " boxes: " << order.size() << " visited against " << expected.size();
+}
+
 TEST(TriangleBvhSegments, EverySegmentVisitsExactlyTheBoxesItCrosses) {
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> at(0.0, 10.0), dir(-1.0, 1.0), len(0.1, 6.0);
-  for (int n : {1, 7, 900, 20000}) {
+  // 70,000 boxes: the subtrees spliced after a parallel build are themselves spliced.
+  for (int n : {1, 7, 900, 70000}) {
     const std::vector<Box> boxes = random_boxes(rng, n);
-    TriangleBvh tree;
-    tree.build(boxes);
-    for (int q = 0; q < 50; ++q) {
-      const Vec3 o{at(rng), at(rng), at(rng)};
-      Vec3 d{dir(rng), dir(rng), dir(rng)};
+    for (int q = 0; q < 20; ++q) {
+      const Vec3 d{dir(rng), dir(rng), dir(rng)};
       if (d[0] == 0.0 || d[1] == 0.0 || d[2] == 0.0) continue;
-      const double t_max = len(rng);
-      std::set<int> seen, expected;
-      int repeats = 0;
-      tree.for_each_on_segment(o, d, t_max, [&](int i, double*) { repeats += !seen.insert(i).second; });
-      for (int i = 0; i < n; ++i)
-        if (brute_segment_hits(o, d, t_max, boxes[i])) expected.insert(i);
-      EXPECT_EQ(repeats, 0);
-      EXPECT_TRUE(seen == expected) << n << " boxes, query " << q << ": " << seen.size() << " against "
-                                    << expected.size();
+      expect_segment_visits_as_brute_force(boxes, Vec3{at(rng), at(rng), at(rng)}, d, len(rng));
     }
+  }
+}
+
+TEST(TriangleBvhSegments, SegmentsTouchingBoxFacesAndCornersCountAsCrossing) {
+  // Unit boxes on an integer grid and power-of-two directions: the slab bounds are exact,
+  // so segments end exactly on faces, run along them and pass through corners.
+  std::vector<Box> boxes;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k)
+        if ((i + j + k) % 2 == 0) boxes.push_back(Box{{1.0 * i, 1.0 * j, 1.0 * k}, {i + 1.0, j + 1.0, k + 1.0}});
+  const Vec3 d{0.5, 0.25, 1.0};
+  for (double t_max : {1.0, 2.0, 4.0, 8.0})
+    for (const Vec3& o : {Vec3{0.0, 0.0, 0.0}, Vec3{1.0, 1.0, -1.0}, Vec3{2.0, 3.0, 0.0}, Vec3{0.5, 2.0, 1.0}})
+      expect_segment_visits_as_brute_force(boxes, o, d, t_max);
+}
+
+TEST(TriangleBvhSegments, DeeplyGradedBoxesKeepTheTreeShallowEnoughForTheSegmentStack) {
+  // 2,000 nested boxes [-2^i, 0] x [0, 1]^2 (i from -1000 to 999): a surface-area split
+  // peels off a few of the largest per level, so without a depth cap the tree is
+  // hundreds of levels deep and the query's fixed stack overflows.
+  std::vector<Box> boxes;
+  for (int i = -1000; i < 1000; ++i) boxes.push_back(Box{{-std::ldexp(1.0, i), 0.0, 0.0}, {0.0, 1.0, 1.0}});
+  TriangleBvh tree;
+  tree.build(boxes);
+  // A segment along y at x = -2^-1001, z = 1/2 crosses every box.
+  bool repeated = false;
+  const std::vector<int> order =
+      visited_on_segment(tree, Vec3{-std::ldexp(1.0, -1001), -0.5, 0.5}, Vec3{0.0, 1.0, 0.0}, 2.0, &repeated);
+  EXPECT_FALSE(repeated);
+  EXPECT_EQ(order.size(), boxes.size());
+}
+
+TEST(TriangleBvhPairs, BoxesWithOneCommonCentreAreSplitAndFoundLikeAnyOthers) {
+  // 40 identical boxes and 40 concentric ones of growing size: no axis has two distinct
+  // centroids, so every split is the median one.
+  std::vector<Box> a;
+  for (int i = 0; i < 40; ++i) a.push_back(Box{{1.0, 1.0, 1.0}, {2.0, 2.0, 2.0}});
+  for (int i = 1; i <= 40; ++i) a.push_back(Box{{1.5 - 0.05 * i, 1.5 - 0.05 * i, 1.5 - 0.05 * i},
+                                                {1.5 + 0.05 * i, 1.5 + 0.05 * i, 1.5 + 0.05 * i}});
+  std::mt19937 rng(29);
+  const std::vector<Box> b = random_boxes(rng, 60);
+  expect_same_pairs_as_brute_force(a, b, std::vector<char>(a.size(), 1));
+  expect_segment_visits_as_brute_force(a, Vec3{1.31, 0.2, 0.4}, Vec3{0.1, 0.9, 0.7}, 3.0);
+}
+
+TEST(TriangleBvhSegments, TheTreeIsTheSameWhateverTheNumberOfThreads) {
+  // Above 2^14 items the halves are built concurrently: the layout, and so the order of
+  // every query's visits, must not depend on it.
+  std::mt19937 rng(31);
+  const std::vector<Box> boxes = random_boxes(rng, 40000);
+  TriangleBvh parallel, serial;
+  parallel.build(boxes);
+  tbb::task_arena(1).execute([&] { serial.build(boxes); });
+  std::uniform_real_distribution<double> at(0.0, 10.0), dir(0.1, 1.0);
+  for (int q = 0; q < 10; ++q) {
+    const Vec3 o{at(rng), at(rng), at(rng)}, d{dir(rng), dir(rng), dir(rng)};
+    bool r1 = false, r2 = false;
+    const std::vector<int> a = visited_on_segment(parallel, o, d, 4.0, &r1);
+    const std::vector<int> b = visited_on_segment(serial, o, d, 4.0, &r2);
+    EXPECT_FALSE(a.empty());
+    EXPECT_TRUE(a == b) << "query " << q;
   }
 }
 

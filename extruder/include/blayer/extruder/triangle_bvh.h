@@ -3,11 +3,12 @@
 //
 // Why not CGAL's AABB tree: it would pull CGAL (~30 s, ~1 GB per translation unit) into
 // the extruder for two simple queries. This tree is split by the binned surface-area
-// heuristic (triangle_bvh.cpp says why), leaves of <= kLeafSize boxes, built in
-// O(n log n) with the top levels in parallel; the layout depends only on the input, so
-// queries and everything derived from them are deterministic. Rebuilding it per layer is cheap next to the
-// normal solve (see bench/extruder). Each leaf item's own box is stored next to it and
-// tested before the item is visited: a leaf's box is the union of up to kLeafSize
+// heuristic down to a fixed depth and at the median below it (triangle_bvh.cpp says
+// why), leaves of <= kLeafSize boxes, with the top levels built in parallel; the layout
+// depends only on the input, so queries and everything derived from them are
+// deterministic. It is built once per run and refitted to every front (refit), which is
+// cheap next to the normal solve (see bench/extruder). Each leaf item's own box is
+// stored next to it and tested before the item is visited: a leaf's box is the union of up to kLeafSize
 // boxes, so without this most visited items would not overlap the query at all and
 // would each cost an exact pair test.
 //
@@ -142,6 +143,8 @@ class TriangleBvh {
     // would turn the slab of a box whose face holds the origin into (+inf, NaN) and
     // miss it, where (-inf, NaN) keeps it (a NaN bound counts as inside).
     for (int i = 0; i < 3; ++i) inv[i] = 1.0 / (dir[i] == 0.0 ? 0.0 : dir[i]);
+    // Holds one entry per level of the current path plus one: the builder caps the
+    // depth below 72 (kMaxSurfaceAreaDepth in triangle_bvh.cpp).
     int stack[128];
     int top = 0;
     stack[top++] = 0;
