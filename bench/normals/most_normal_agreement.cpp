@@ -145,16 +145,10 @@ void run(const std::string& path, const Options& opt, long* total_compared, long
 // CAD-like fans of valence 20-60, n per shape and valence, exact planes and offsets of
 // 1e-5 and 1e-3 of the edge length.
 void run_cad(int n, const Options& opt, long* total_compared, long* total_disagree) {
-  using testing_fans::CadShape;
   std::vector<FanGeometry> fans;
   std::mt19937 rng(60606);
-  for (int valence : {20, 30, 40, 50, 60})
-    for (double offset : {0.0, 1e-5, 1e-3})
-      for (CadShape shape : {CadShape::kRidge, CadShape::kCorner, CadShape::kRim, CadShape::kSliver})
-        for (int t = 0; t < n; ++t) {
-          FanGeometry g = testing_fans::geometry(testing_fans::cad_like_fan(rng, shape, valence, offset));
-          if (!g.any_degenerate) fans.push_back(std::move(g));
-        }
+  testing_fans::for_each_cad_fan(rng, {20, 30, 40, 50, 60}, n,
+                                 [&](FanGeometry g, const std::string&) { fans.push_back(std::move(g)); });
   for (bool constrained : {true, false}) {
     if (!constrained && !opt.free_too) continue;
     Tally t;

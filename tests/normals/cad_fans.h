@@ -11,11 +11,14 @@
 #pragma once
 
 #include <cmath>
+#include <initializer_list>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "blayer/core/vec3.h"
 #include "random_fans.h"
+#include "test_fans.h"
 
 namespace blayer {
 namespace testing_fans {
@@ -118,6 +121,23 @@ inline std::vector<Vec3> cad_like_fan(std::mt19937& rng, CadShape shape, int k, 
   random_rotation(rng, q);
   for (Vec3& r : ring) r = scale * rotate(r, q);
   return ring;
+}
+
+// The standard set of CAD-like fans: for each valence, offset (0, 1e-5 and 1e-3 of the
+// edge length) and shape, `per_shape` fans drawn from rng in that order, each passed to
+// visit(geometry, label) unless degenerate. The label names shape, valence, offset and
+// draw.
+template <class Visit>
+void for_each_cad_fan(std::mt19937& rng, std::initializer_list<int> valences, int per_shape, Visit&& visit) {
+  for (int valence : valences)
+    for (double offset : {0.0, 1e-5, 1e-3})
+      for (CadShape shape : {CadShape::kRidge, CadShape::kCorner, CadShape::kRim, CadShape::kSliver})
+        for (int t = 0; t < per_shape; ++t) {
+          FanGeometry g = geometry(cad_like_fan(rng, shape, valence, offset));
+          if (g.any_degenerate) continue;
+          visit(std::move(g), std::string(cad_shape_name(shape)) + " k " + std::to_string(valence) + " offset " +
+                                  std::to_string(offset) + " #" + std::to_string(t));
+        }
 }
 
 }  // namespace testing_fans

@@ -17,7 +17,6 @@
 namespace blayer {
 namespace {
 
-using testing_fans::CadShape;
 using testing_fans::Shape;
 
 // Which passes answered, from the diagnostics: the subdivision visits cells; without
@@ -74,18 +73,10 @@ TEST(DefaultMostNormal, MatchesEnumerationOnCadLikeFans) {
   std::mt19937 rng(1969);
   Paths paths;
   int n = 0;
-  for (int valence : {12, 16, 20, 24})
-    for (double offset : {0.0, 1e-5, 1e-3})
-      for (CadShape shape : {CadShape::kRidge, CadShape::kCorner, CadShape::kRim, CadShape::kSliver})
-        for (int t = 0; t < 6; ++t) {
-          const FanGeometry g = testing_fans::geometry(testing_fans::cad_like_fan(rng, shape, valence, offset));
-          if (g.any_degenerate) continue;
-          ++n;
-          expect_same(g,
-                      std::string(testing_fans::cad_shape_name(shape)) + " k " + std::to_string(valence) +
-                          " offset " + std::to_string(offset) + " #" + std::to_string(t),
-                      &paths);
-        }
+  testing_fans::for_each_cad_fan(rng, {12, 16, 20, 24}, 6, [&](const FanGeometry& g, const std::string& label) {
+    ++n;
+    expect_same(g, label, &paths);
+  });
   EXPECT_GT(n, 250);
   // Both passes of the default solver must have been exercised.
   EXPECT_GT(paths.subdivided, 50);
