@@ -22,8 +22,8 @@ constexpr int kSplitBins = 16;
 // surface-area split may peel off a few items per level (boxes graded over hundreds of
 // orders of magnitude), and the segment query's stack holds one entry per level; the
 // cap bounds the depth by kMaxSurfaceAreaDepth + log2(n / kLeafSize) + 1 < 72 for any
-// int count. Real surfaces stay far above it: 13 to 35 levels measured on graded
-// chains, graded sheets and 20k nested random boxes.
+// int count. Real inputs stay well below it: a model of this builder gave 13 to 35
+// levels on graded chains, graded sheets and 20k nested random boxes.
 constexpr int kMaxSurfaceAreaDepth = 40;
 
 double surface_area(const Box& b) {
@@ -38,13 +38,15 @@ void unite(Box* a, const Box& b) {
   }
 }
 
-// Adds b to the running union *acc of *n boxes.
-void accumulate(Box* acc, int* n, const Box& b) {
-  if ((*n)++ == 0) {
+// Adds b, the union of `weight` boxes, to the running union *acc of *n boxes.
+void accumulate(Box* acc, int* n, const Box& b, int weight = 1) {
+  if (weight == 0) return;
+  if (*n == 0) {
     *acc = b;
   } else {
     unite(acc, b);
   }
+  *n += weight;
 }
 
 }  // namespace
@@ -129,23 +131,14 @@ struct TriangleBvh::Builder {
       int right_count[kSplitBins];
       Box acc;
       int n = 0;
-      auto add_bin = [&](int bin) {
-        if (bin_count[bin] == 0) return;
-        if (n == 0) {
-          acc = bin_box[bin];
-        } else {
-          unite(&acc, bin_box[bin]);
-        }
-        n += bin_count[bin];
-      };
       for (int bin = kSplitBins - 1; bin > 0; --bin) {
-        add_bin(bin);
+        accumulate(&acc, &n, bin_box[bin], bin_count[bin]);
         right_area[bin - 1] = n > 0 ? surface_area(acc) : 0.0;
         right_count[bin - 1] = n;
       }
       n = 0;
       for (int bin = 0; bin < kSplitBins - 1; ++bin) {
-        add_bin(bin);
+        accumulate(&acc, &n, bin_box[bin], bin_count[bin]);
         if (n == 0 || right_count[bin] == 0) continue;
         const double cost = surface_area(acc) * n + right_area[bin] * right_count[bin];
         if (cost < best_cost) {
