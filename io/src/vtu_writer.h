@@ -13,8 +13,10 @@
 // end (base64 of a fixed byte count has a fixed length).
 //
 // The file is the same as VTK's up to attributes that readers do not need (no
-// RangeMin / RangeMax, no information keys): VTK, ParaView and meshio read it, and it is
-// well-formed XML. Internal to blayer_io.
+// RangeMin / RangeMax, no information keys) and one choice VTK's writer cannot make:
+// with zlib, floating-point arrays are stored (deflate level 0) and integer arrays
+// compressed at level 1. A stored block is an ordinary zlib stream, so VTK, ParaView
+// and meshio read the file as before; it is well-formed XML. Internal to blayer_io.
 #pragma once
 
 #include <string>
