@@ -78,14 +78,11 @@ bool triangles_intersect(const Vec3* s, const Vec3* t) {
   // A triangle strictly on one side of the other's plane cannot meet it. This settles
   // almost every pair of nearby front triangles with 3 or 6 orientations instead of up
   // to 30 in the edge tests below, which decide the remaining pairs.
-  if (strictly_one_side(detail::orient3d_filtered(t[0], t[1], t[2], s[0]),
-                        detail::orient3d_filtered(t[0], t[1], t[2], s[1]),
-                        detail::orient3d_filtered(t[0], t[1], t[2], s[2])))
-    return false;
-  if (strictly_one_side(detail::orient3d_filtered(s[0], s[1], s[2], t[0]),
-                        detail::orient3d_filtered(s[0], s[1], s[2], t[1]),
-                        detail::orient3d_filtered(s[0], s[1], s[2], t[2])))
-    return false;
+  int side[3];
+  detail::orient3d_sides(t[0], t[1], t[2], s, 3, side);
+  if (strictly_one_side(side[0], side[1], side[2])) return false;
+  detail::orient3d_sides(s[0], s[1], s[2], t, 3, side);
+  if (strictly_one_side(side[0], side[1], side[2])) return false;
   for (int k = 0; k < 3; ++k) {
     if (segment_intersects_triangle(s[k], s[(k + 1) % 3], t[0], t[1], t[2])) return true;
     if (segment_intersects_triangle(t[k], t[(k + 1) % 3], s[0], s[1], s[2])) return true;
@@ -96,7 +93,10 @@ bool triangles_intersect(const Vec3* s, const Vec3* t) {
 }  // namespace
 
 bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const int sp = detail::orient3d_filtered(a, b, c, p), sq = detail::orient3d_filtered(a, b, c, q);
+  const Vec3 ends[2] = {p, q};
+  int side[2];
+  detail::orient3d_sides(a, b, c, ends, 2, side);
+  const int sp = side[0], sq = side[1];
   if (sp == 0 && sq == 0) return coplanar_segment_triangle(p, q, a, b, c);
   if (sp * sq > 0) return false;
   // The line pq crosses the plane within the segment; it meets the closed triangle iff

@@ -49,6 +49,63 @@ TEST(FilteredOrient3d, AgreesWithTheExactPredicate) {
   EXPECT_GT(n_neg, 1000);
 }
 
+// The same for one plane against several points, with the plane's minors shared, and
+// for mixed scales: a plane of differences near 1e-200 against a point 1e80 away has
+// subnormal products under a permanent that the range test alone would accept.
+TEST(FilteredOrient3d, PlaneAgainstSeveralPointsAgreesWithTheExactPredicate) {
+  Rng rnd;
+  int n_zero = 0, n_decided = 0;
+  for (double scale : {1.0, 1e-3, 1e6, 1e-160, 1e-300, 1e160, 1e300}) {
+    for (double far : {1.0, 1e80, 1e-80, 1e200}) {
+      for (int i = 0; i < 5000; ++i) {
+        Vec3 plane[3], p[4];
+        for (Vec3& x : plane) x = Vec3{rnd() - 0.5, rnd() - 0.5, rnd() - 0.5} * scale;
+        for (int k = 0; k < 4; ++k) {
+          p[k] = Vec3{rnd() - 0.5, rnd() - 0.5, rnd() - 0.5} * (scale * far);
+          if ((i + k) % 3 != 0) {
+            const double u = std::ldexp(std::floor(rnd() * 8), -3), w = std::ldexp(std::floor(rnd() * 8), -3);
+            p[k] = plane[0] + u * (plane[1] - plane[0]) + w * (plane[2] - plane[0]);
+            if ((i + k) % 3 == 2) p[k][k % 3] = std::nextafter(p[k][k % 3], k % 2 ? HUGE_VAL : -HUGE_VAL);
+          }
+        }
+        int sides[4];
+        detail::orient3d_sides(plane[0], plane[1], plane[2], p, 4, sides);
+        for (int k = 0; k < 4; ++k) {
+          const int exact = orient3d_sign(plane[0], plane[1], plane[2], p[k]);
+          ASSERT_EQ(sides[k], exact) << "scale " << scale << " far " << far << " i " << i << " point " << k;
+          n_zero += exact == 0;
+          n_decided += exact != 0;
+        }
+      }
+    }
+  }
+  EXPECT_GT(n_zero, 1000);
+  EXPECT_GT(n_decided, 10000);
+}
+
+// A product of two differences near 2^-538 is below half the smallest subnormal and
+// rounds to 0, losing 0.225 * 2^-1074 of the determinant; multiplied by a difference of
+// 2^600 that is 0.225 * 2^-474, more than the one surviving term (-0.1 * 2^-474), so
+// the computed determinant has the wrong sign, with a permanent of 0.1 * 2^-474 that a
+// range test alone accepts and Shewchuk's relative bound far below |det|. The filters
+// must hand such a case to the exact predicate (they refuse differences over 1e100).
+TEST(FilteredOrient3d, UnderflowUnderAHugeDifferenceGoesToTheExactPredicate) {
+  const Vec3 o{0.0, 0.0, 0.0};
+  const Vec3 a{std::ldexp(1.0, 64) / 9.0, 0.0, std::ldexp(1.0, 600)};
+  const Vec3 b{std::ldexp(1.0, -538), 0.0, 1.0};
+  const Vec3 c{0.0, 0.9 * std::ldexp(1.0, -538), 0.0};
+  const int exact = orient3d_sign(a, b, c, o);
+  ASSERT_NE(exact, 0);
+  EXPECT_EQ(detail::orient3d_filtered(a, b, c, o), exact);
+  // The same matrix transposed, as orient3d_sides expands it: rows b - a, c - a, p - a.
+  const Vec3 tb{a[0], b[0], c[0]}, tc{a[1], b[1], c[1]}, tp{a[2], b[2], c[2]};
+  const int exact_t = orient3d_sign(o, tb, tc, tp);
+  ASSERT_NE(exact_t, 0);
+  int side;
+  detail::orient3d_sides(o, tb, tc, &tp, 1, &side);
+  EXPECT_EQ(side, exact_t);
+}
+
 TEST(FilteredOrient3d, KeepsTheSignConvention) {
   const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
   EXPECT_EQ(detail::orient3d_filtered(a, b, c, Vec3{0, 0, 1}), 1);

@@ -5,14 +5,26 @@
 //
 // The determinant is evaluated exactly as in Shewchuk's orient3d (differences against
 // the fourth point, then the 3x3 expansion), and its sign is returned only when
-// |det| > (7 + 56 eps) eps * permanent, eps = 2^-53: Shewchuk's proven bound on the
-// rounding error of that evaluation ("Adaptive Precision Floating-Point Arithmetic and
-// Fast Robust Geometric Predicates", 1997, errboundA of orient3d). The bound assumes
-// neither underflow nor overflow, so a permanent outside [1e-200, 1e200] (or not
-// finite) also goes to the exact predicate. Every answer therefore equals
-// orient3d_sign's; the filter only decides the easy cases faster.
+// |det| > (7 + 56 eps) eps * permanent + kUnderflowSlack, eps = 2^-53: Shewchuk's proven
+// bound on the rounding error of that evaluation ("Adaptive Precision Floating-Point
+// Arithmetic and Fast Robust Geometric Predicates", 1997, errboundA of orient3d), which
+// assumes neither underflow nor overflow. Overflow yields an infinite or NaN permanent,
+// which fails the range test [1e-200, 1e200]. Underflow is not excluded by that test: a
+// product of two small differences may be subnormal while the permanent is not. Such a
+// product carries an absolute error of at most 2^-1075 instead of a relative one, and
+// the evaluation multiplies it by one more difference only (the z differences here, the
+// point's in orient3d_sides), so those are required to be at most kMaxDifference = 1e100:
+// then the at most nine underflowing products add less than 1e-222 in all, which
+// kUnderflowSlack = 1e-220 covers. Everything else goes to the exact predicate, so every
+// answer equals orient3d_sign's; the filter only decides the easy cases faster.
+//
+// orient3d_sides evaluates one plane against several points: the determinant
+// det[b - a, c - a, p - a] expanded along the row of p is Shewchuk's expansion of the
+// transposed matrix, whose entries are the same rounded differences, so the same bound
+// holds; the 2x2 minors of b - a and c - a are computed once for all points.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "blayer/core/vec3.h"
@@ -20,6 +32,10 @@
 
 namespace blayer {
 namespace detail {
+
+constexpr double kMaxDifference = 1e100;
+constexpr double kUnderflowSlack = 1e-220;
+constexpr double kOrient3dErrBound = (7.0 + 56.0 * 1.1102230246251565e-16) * 1.1102230246251565e-16;
 
 // Same contract as orient3d_sign: the sign of det[b-a, c-a, d-a].
 inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -31,17 +47,43 @@ inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const 
   const double cdxady = cdx * ady, adxcdy = adx * cdy;
   const double adxbdy = adx * bdy, bdxady = bdx * ady;
   const double det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
-  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * std::fabs(adz) +
-                           (std::fabs(cdxady) + std::fabs(adxcdy)) * std::fabs(bdz) +
-                           (std::fabs(adxbdy) + std::fabs(bdxady)) * std::fabs(cdz);
-  constexpr double kEps = 1.1102230246251565e-16;  // 2^-53
-  constexpr double kErrBound = (7.0 + 56.0 * kEps) * kEps;
-  if (permanent >= 1e-200 && permanent <= 1e200) {
-    const double err = kErrBound * permanent;
+  const double az = std::fabs(adz), bz = std::fabs(bdz), cz = std::fabs(cdz);
+  const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * az + (std::fabs(cdxady) + std::fabs(adxcdy)) * bz +
+                           (std::fabs(adxbdy) + std::fabs(bdxady)) * cz;
+  if (permanent >= 1e-200 && permanent <= 1e200 && std::max(az, std::max(bz, cz)) <= kMaxDifference) {
+    const double err = kOrient3dErrBound * permanent + kUnderflowSlack;
     if (det > err) return -1;
     if (-det > err) return 1;
   }
   return orient3d_sign(a, b, c, d);
+}
+
+// out[i] = orient3d_filtered(a, b, c, p[i]) for i < n, with the plane's minors shared.
+inline void orient3d_sides(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* p, int n, int* out) {
+  const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
+  const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
+  const double bycz = by * cz, bzcy = bz * cy, bzcx = bz * cx, bxcz = bx * cz, bxcy = bx * cy, bycx = by * cx;
+  const double mx = bycz - bzcy, my = bzcx - bxcz, mz = bxcy - bycx;
+  const double px_perm = std::fabs(bycz) + std::fabs(bzcy), py_perm = std::fabs(bzcx) + std::fabs(bxcz),
+               pz_perm = std::fabs(bxcy) + std::fabs(bycx);
+  for (int i = 0; i < n; ++i) {
+    const double qx = p[i][0] - a[0], qy = p[i][1] - a[1], qz = p[i][2] - a[2];
+    const double ax = std::fabs(qx), ay = std::fabs(qy), az = std::fabs(qz);
+    const double det = qx * mx + qy * my + qz * mz;
+    const double permanent = ax * px_perm + ay * py_perm + az * pz_perm;
+    if (permanent >= 1e-200 && permanent <= 1e200 && std::max(ax, std::max(ay, az)) <= kMaxDifference) {
+      const double err = kOrient3dErrBound * permanent + kUnderflowSlack;
+      if (det > err) {
+        out[i] = 1;
+        continue;
+      }
+      if (-det > err) {
+        out[i] = -1;
+        continue;
+      }
+    }
+    out[i] = orient3d_sign(a, b, c, p[i]);
+  }
 }
 
 }  // namespace detail
