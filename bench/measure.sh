@@ -1,12 +1,16 @@
 # Sourced by the comparison benches: measure LABEL COMMAND... runs COMMAND with its
 # output in $work/LABEL.log, prints its wall time and peak resident memory, and leaves
-# the seconds in $work/LABEL.secs for the ratio. Needs $work and GNU time (/usr/bin/time).
+# the seconds in $work/LABEL.secs for the ratio: the fastest of the runs of LABEL so
+# far, since on a shared machine the slower runs measure the neighbours. Needs $work and
+# GNU time (/usr/bin/time).
 measure() {
   local label="$1"; shift
   /usr/bin/time -f "%e %M" -o "$work/time.txt" "$@" > "$work/$label.log" 2>&1 || true
   read -r secs kb < "$work/time.txt"
   printf "%-8s wall %8.2f s   peak RSS %8.1f MB\n" "$label" "$secs" "$(echo "$kb / 1024" | bc -l)"
-  echo "$secs" > "$work/$label.secs"
+  if [ ! -f "$work/$label.secs" ] || [ "$(echo "$secs < $(cat "$work/$label.secs")" | bc -l)" = 1 ]; then
+    echo "$secs" > "$work/$label.secs"
+  fi
 }
 
 ratio() {  # ratio A B: seconds of A over seconds of B
