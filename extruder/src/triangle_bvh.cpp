@@ -12,7 +12,7 @@ namespace {
 
 // Subtrees above this many items are built in parallel; below it the task overhead
 // outweighs the work.
-constexpr int kParallelBuildItems = 1 << 14;
+constexpr int kParallelBuildItems = 1 << 12;
 
 // Centroid bins per axis of the surface-area split (16 is the usual choice: more bins
 // refine the split little, fewer coarsen it on graded meshes).
@@ -115,30 +115,42 @@ struct TriangleBvh::Builder {
   // area(left) * n_left + area(right) * n_right, or the median split when no axis has
   // two distinct centroids or no split has a finite cost.
   int surface_area_split(int first, int count, const Box& cb) const {
+    // One pass over the items bins them on all three axes at once (their boxes and
+    // centroids are read once, not once per axis).
+    double lo[3], scale[3];
+    bool splittable[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      const double ext = cb.hi[axis] - cb.lo[axis];
+      lo[axis] = cb.lo[axis];
+      splittable[axis] = ext > 0.0;
+      scale[axis] = splittable[axis] ? kSplitBins / ext : 0.0;
+    }
+    Box bin_box[3][kSplitBins];
+    int bin_count[3][kSplitBins] = {};
+    for (int i = first; i < first + count; ++i) {
+      const Box& box = boxes[items[i]];
+      for (int axis = 0; axis < 3; ++axis) {
+        const int bin = bin_of(items[i], axis, lo[axis], scale[axis]);
+        accumulate(&bin_box[axis][bin], &bin_count[axis][bin], box);
+      }
+    }
     double best_cost = HUGE_VAL;
     int best_axis = -1, best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      const double lo = cb.lo[axis], ext = cb.hi[axis] - lo;
-      if (!(ext > 0.0)) continue;
-      Box bin_box[kSplitBins];
-      int bin_count[kSplitBins] = {};
-      for (int i = first; i < first + count; ++i) {
-        const int bin = bin_of(items[i], axis, lo, ext);
-        accumulate(&bin_box[bin], &bin_count[bin], boxes[items[i]]);
-      }
+      if (!splittable[axis]) continue;
       // right_area[i]: the bins after i together.
       double right_area[kSplitBins];
       int right_count[kSplitBins];
       Box acc;
       int n = 0;
       for (int bin = kSplitBins - 1; bin > 0; --bin) {
-        accumulate(&acc, &n, bin_box[bin], bin_count[bin]);
+        accumulate(&acc, &n, bin_box[axis][bin], bin_count[axis][bin]);
         right_area[bin - 1] = n > 0 ? surface_area(acc) : 0.0;
         right_count[bin - 1] = n;
       }
       n = 0;
       for (int bin = 0; bin < kSplitBins - 1; ++bin) {
-        accumulate(&acc, &n, bin_box[bin], bin_count[bin]);
+        accumulate(&acc, &n, bin_box[axis][bin], bin_count[axis][bin]);
         if (n == 0 || right_count[bin] == 0) continue;
         const double cost = surface_area(acc) * n + right_area[bin] * right_count[bin];
         if (cost < best_cost) {
@@ -149,9 +161,9 @@ struct TriangleBvh::Builder {
       }
     }
     if (best_axis < 0) return median_split(first, count, cb);
-    const double lo = cb.lo[best_axis], ext = cb.hi[best_axis] - lo;
-    const auto mid = std::partition(items.begin() + first, items.begin() + first + count,
-                                    [&](int it) { return bin_of(it, best_axis, lo, ext) <= best_bin; });
+    const auto mid = std::partition(items.begin() + first, items.begin() + first + count, [&](int it) {
+      return bin_of(it, best_axis, lo[best_axis], scale[best_axis]) <= best_bin;
+    });
     return static_cast<int>(mid - (items.begin() + first));
   }
 
@@ -173,8 +185,8 @@ struct TriangleBvh::Builder {
 
   // The bin of an item's centroid; a non-finite position (from a NaN or overflowing
   // coordinate) goes to the first bin, without an undefined float-to-int conversion.
-  int bin_of(int item, int axis, double lo, double ext) const {
-    const double t = (centre[item][axis] - lo) / ext * kSplitBins;
+  int bin_of(int item, int axis, double lo, double scale) const {
+    const double t = (centre[item][axis] - lo) * scale;
     if (t >= kSplitBins - 1) return kSplitBins - 1;
     return t > 0.0 ? static_cast<int>(t) : 0;
   }
