@@ -126,12 +126,20 @@ class Base64Writer {
   }
 
  private:
+  // Groups of three bytes encode independently, so a long piece is encoded in chunks
+  // of kEncodeChunk bytes (a multiple of 3) in parallel; only the last chunk may be
+  // padded.
   void encode(const unsigned char* data, std::size_t n) {
     if (n == 0) return;
     text_.resize(4 * ((n + 2) / 3));
-    const unsigned long length = vtkBase64Utilities::Encode(data, static_cast<unsigned long>(n), text_.data());
-    out_.write(reinterpret_cast<const char*>(text_.data()), static_cast<std::streamsize>(length));
+    const std::size_t n_chunks = (n + kEncodeChunk - 1) / kEncodeChunk;
+    tbb::parallel_for(std::size_t(0), n_chunks, [&](std::size_t c) {
+      const std::size_t first = c * kEncodeChunk, length = std::min(kEncodeChunk, n - first);
+      vtkBase64Utilities::Encode(data + first, static_cast<unsigned long>(length), text_.data() + first / 3 * 4);
+    });
+    out_.write(reinterpret_cast<const char*>(text_.data()), static_cast<std::streamsize>(text_.size()));
   }
+  static constexpr std::size_t kEncodeChunk = 3 * 65536;
   std::ostream& out_;
   std::vector<unsigned char> text_;
   unsigned char carry_[3];
@@ -158,6 +166,7 @@ void write_array_data(std::ostream& out, const ArraySource& a, VtkCompressor com
   write_header(out, header);
   Base64Writer data(out);
   std::vector<std::vector<unsigned char>> compressed(std::min(n_blocks, kRunBlocks));
+  std::vector<unsigned char> run_bytes;
   for (std::size_t run = 0; run < n_blocks; run += kRunBlocks) {
     const std::size_t n_run = std::min(kRunBlocks, n_blocks - run);
     tbb::parallel_for(std::size_t(0), n_run, [&](std::size_t i) {
@@ -179,10 +188,13 @@ void write_array_data(std::ostream& out, const ArraySource& a, VtkCompressor com
       if (size == 0) throw IoError("cannot compress the values of array '" + a.name + "'");
       c.resize(size);
     });
+    // The run's blocks, in order, as one piece for the encoder.
+    run_bytes.clear();
     for (std::size_t i = 0; i < n_run; ++i) {
       header[3 + run + i] = compressed[i].size();
-      data.write(compressed[i].data(), compressed[i].size());
+      run_bytes.insert(run_bytes.end(), compressed[i].begin(), compressed[i].end());
     }
+    data.write(run_bytes.data(), run_bytes.size());
   }
   data.finish();
   const std::streampos end = out.tellp();
