@@ -86,10 +86,10 @@ vtkSmartPointer<vtkDataCompressor> make_compressor(VtkCompressor c) {
 }
 
 // Floating-point values compress poorly (zlib level 1 shrinks the coordinates and
-// quality measures of a layer mesh only to 80-94 %, at about 46 MB/s on one core, more
-// than a third of the whole write), so with zlib their blocks are stored: deflate
-// level 0, a valid zlib stream that every zlib reader inflates, written at memory
-// speed. Integer arrays (connectivity: 17 %) are compressed at level 1, as VTK does.
+// quality measures of a layer mesh only to 80-94 %, at about 46 MB/s on one core), so
+// with zlib their blocks are stored: deflate level 0, a valid zlib stream that every
+// zlib reader inflates, written at memory speed (vtk_io.h has the measured effect).
+// Integer arrays (connectivity: to 17 %) are compressed at level 1, as VTK does.
 bool stored_block(VtkCompressor c, const ArraySource& a) { return c == VtkCompressor::kZlib && a.type[0] == 'F'; }
 
 std::size_t store_block(const std::vector<unsigned char>& raw, std::vector<unsigned char>* out) {

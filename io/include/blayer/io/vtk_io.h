@@ -48,7 +48,8 @@ namespace blayer {
 
 enum class VtkCompressor {
   kZlib,  // smaller files that every VTK XML reader, meshio included, understands
-  kLz4,   // 3 to 4 times faster to write, 1.2 to 1.5 times larger; meshio cannot read it
+  kLz4,   // about 1.7 times faster to write and 1.13 to 1.19 times larger on layer meshes
+          // (zlib stores their floating-point arrays); meshio cannot read it
 };
 
 struct VtkWriteOptions {
