@@ -1,8 +1,10 @@
 // The .vtu writer: a VolumeMesh as VTK XML UnstructuredGrid in the layout VTK's own
 // writer gives in its "binary" data mode (vtk_io.h): every DataArray inline, as the
 // base64 text of a block header followed by the base64 text of its compressed blocks
-// (32 KiB of values each, compressed by VTK's own zlib or LZ4 compressor, 64-bit header
-// words: block count, block size, last block size, then each compressed size).
+// (32 KiB of values each, 64-bit header words: block count, block size, last block
+// size, then each compressed size). Blocks are compressed by VTK's own zlib or LZ4
+// compressor, except that with zlib the floating-point arrays' blocks are stored by
+// zlib's compress2 at level 0 (below).
 //
 // Why not vtkXMLUnstructuredGridWriter: it compresses one block after the other, which
 // made the write the largest single step after the extrusion (9.6 s of a 143 s run on
@@ -28,8 +30,9 @@ namespace blayer {
 namespace detail {
 
 // The compression settings of every VTK XML file blayer writes: zlib level 1 (higher
-// levels cost up to 2.8 times the time for at most 1.5 % smaller files, vtk_io.h); LZ4
-// at VTK's default acceleration 5.
+// levels cost up to 2.8 times the time for at most 1.5 % smaller files, vtk_io.h), with
+// the floating-point arrays of .vtu files stored instead; LZ4 at VTK's default
+// acceleration 5.
 constexpr int kZlibLevel = 1;
 constexpr int kLz4Level = 5;
 

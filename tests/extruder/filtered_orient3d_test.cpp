@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "blayer/extruder/triangle_intersections.h"
@@ -49,33 +50,37 @@ TEST(FilteredOrient3d, AgreesWithTheExactPredicate) {
   EXPECT_GT(n_neg, 1000);
 }
 
-// The same for one plane against several points, with the plane's minors shared, and
-// for mixed scales: a plane of differences near 1e-200 against a point 1e80 away has
-// subnormal products under a permanent that the range test alone would accept.
+// The same for one plane against several points, with the plane's minors shared, at
+// mixed scales (points far from the plane relative to its size, and a plane of
+// differences near 1e-155 whose products are subnormal, seen from points 1e110 away,
+// beyond the filter's limit on differences). Every coordinate stays finite.
 TEST(FilteredOrient3d, PlaneAgainstSeveralPointsAgreesWithTheExactPredicate) {
   Rng rnd;
   int n_zero = 0, n_decided = 0;
-  for (double scale : {1.0, 1e-3, 1e6, 1e-160, 1e-300, 1e160, 1e300}) {
-    for (double far : {1.0, 1e80, 1e-80, 1e200}) {
-      for (int i = 0; i < 5000; ++i) {
-        Vec3 plane[3], p[4];
-        for (Vec3& x : plane) x = Vec3{rnd() - 0.5, rnd() - 0.5, rnd() - 0.5} * scale;
-        for (int k = 0; k < 4; ++k) {
-          p[k] = Vec3{rnd() - 0.5, rnd() - 0.5, rnd() - 0.5} * (scale * far);
-          if ((i + k) % 3 != 0) {
-            const double u = std::ldexp(std::floor(rnd() * 8), -3), w = std::ldexp(std::floor(rnd() * 8), -3);
-            p[k] = plane[0] + u * (plane[1] - plane[0]) + w * (plane[2] - plane[0]);
-            if ((i + k) % 3 == 2) p[k][k % 3] = std::nextafter(p[k][k % 3], k % 2 ? HUGE_VAL : -HUGE_VAL);
-          }
+  const std::pair<double, double> scales[] = {{1.0, 1.0},     {1.0, 1e80},     {1.0, 1e-80},   {1e-3, 1.0},
+                                              {1e6, 1e200},   {1e-160, 1.0},   {1e-160, 1e80}, {1e-300, 1.0},
+                                              {1e-300, 1e200}, {1e160, 1.0},   {1e160, 1e-80}, {1e300, 1.0},
+                                              {1e-155, 1e265}, {1e-155, 1e50}};
+  for (const auto& [scale, far] : scales) {
+    for (int i = 0; i < 5000; ++i) {
+      Vec3 plane[3], p[4];
+      for (Vec3& x : plane) x = Vec3{rnd() - 0.5, rnd() - 0.5, rnd() - 0.5} * scale;
+      for (int k = 0; k < 4; ++k) {
+        p[k] = Vec3{rnd() - 0.5, rnd() - 0.5, rnd() - 0.5} * (scale * far);
+        if ((i + k) % 3 != 0) {
+          const double u = std::ldexp(std::floor(rnd() * 8), -3), w = std::ldexp(std::floor(rnd() * 8), -3);
+          p[k] = plane[0] + u * (plane[1] - plane[0]) + w * (plane[2] - plane[0]);
+          if ((i + k) % 3 == 2) p[k][k % 3] = std::nextafter(p[k][k % 3], k % 2 ? HUGE_VAL : -HUGE_VAL);
         }
-        int sides[4];
-        detail::orient3d_sides(plane[0], plane[1], plane[2], p, 4, sides);
-        for (int k = 0; k < 4; ++k) {
-          const int exact = orient3d_sign(plane[0], plane[1], plane[2], p[k]);
-          ASSERT_EQ(sides[k], exact) << "scale " << scale << " far " << far << " i " << i << " point " << k;
-          n_zero += exact == 0;
-          n_decided += exact != 0;
-        }
+        ASSERT_TRUE(is_finite(p[k])) << "scale " << scale << " far " << far;
+      }
+      int sides[4];
+      detail::orient3d_sides(plane[0], plane[1], plane[2], p, 4, sides);
+      for (int k = 0; k < 4; ++k) {
+        const int exact = orient3d_sign(plane[0], plane[1], plane[2], p[k]);
+        ASSERT_EQ(sides[k], exact) << "scale " << scale << " far " << far << " i " << i << " point " << k;
+        n_zero += exact == 0;
+        n_decided += exact != 0;
       }
     }
   }

@@ -4,19 +4,23 @@
 // point conversions, dominated their cost).
 //
 // The determinant is evaluated exactly as in Shewchuk's orient3d (differences against
-// the fourth point, then the 3x3 expansion), and its sign is returned only when
-// |det| > (7 + 56 eps) eps * permanent + kUnderflowSlack, eps = 2^-53: Shewchuk's proven
-// bound on the rounding error of that evaluation ("Adaptive Precision Floating-Point
-// Arithmetic and Fast Robust Geometric Predicates", 1997, errboundA of orient3d), which
-// assumes neither underflow nor overflow. Overflow yields an infinite or NaN permanent,
-// which fails the range test [1e-200, 1e200]. Underflow is not excluded by that test: a
-// product of two small differences may be subnormal while the permanent is not. Such a
-// product carries an absolute error of at most 2^-1075 instead of a relative one, and
-// the evaluation multiplies it by one more difference only (the z differences here, the
-// point's in orient3d_sides), so those are required to be at most kMaxDifference = 1e100:
-// then the at most nine underflowing products add less than 1e-222 in all, which
-// kUnderflowSlack = 1e-220 covers. Everything else goes to the exact predicate, so every
-// answer equals orient3d_sign's; the filter only decides the easy cases faster.
+// the fourth point, then the 3x3 expansion). His proven bound on the rounding error of
+// that evaluation is (7 + 56 eps) eps * permanent, eps = 2^-53, computed in floating
+// point ("Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
+// Predicates", 1997, errboundA of orient3d); it assumes neither underflow nor overflow.
+// The sign is returned only when |det| > (7 + 68 eps) eps * permanent +
+// kUnderflowSlack: the 12 eps^2 more pay for the one more rounding of that sum (1.5 eps
+// relative), so the computed threshold exceeds Shewchuk's bound plus any underflow
+// error below the slack, whether or not the slack is absorbed in the sum. Overflow
+// yields an infinite or NaN permanent, which fails the range test [1e-200, 1e200].
+// Underflow is not excluded by that test: a product of two small differences may be
+// subnormal while the permanent is not. Such a product carries an absolute error of at
+// most 2^-1075 instead of a relative one, and the evaluation multiplies it by one more
+// difference only (the z differences here, the point's in orient3d_sides), so those are
+// required to be at most kMaxDifference = 1e100: then the at most nine underflowing
+// products add less than 1e-222 in all, which kUnderflowSlack = 1e-220 covers.
+// Everything else goes to the exact predicate, so every answer equals orient3d_sign's;
+// the filter only decides the easy cases faster.
 //
 // orient3d_sides evaluates one plane against several points: the determinant
 // det[b - a, c - a, p - a] expanded along the row of p is Shewchuk's expansion of the
@@ -35,7 +39,7 @@ namespace detail {
 
 constexpr double kMaxDifference = 1e100;
 constexpr double kUnderflowSlack = 1e-220;
-constexpr double kOrient3dErrBound = (7.0 + 56.0 * 1.1102230246251565e-16) * 1.1102230246251565e-16;
+constexpr double kOrient3dErrBound = (7.0 + 68.0 * 1.1102230246251565e-16) * 1.1102230246251565e-16;
 
 // Same contract as orient3d_sign: the sign of det[b-a, c-a, d-a].
 inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {

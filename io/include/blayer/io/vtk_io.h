@@ -17,9 +17,10 @@
 //   inline zlib level 1 (default)  9.6 s, 544 MB           4.7 s, 270 MB   VTK, ParaView, meshio
 //   inline LZ4                     2.6 s, 667 MB           1.7 s, 411 MB   VTK, ParaView
 //   appended raw LZ4 (not XML)     0.9 s, 500 MB           0.7 s, 308 MB
-// In `blayer extrude` of the 571k-triangle ONERA M6 wing (143 s in all) zlib costs
+// In `blayer extrude` of the 571k-triangle ONERA M6 wing (143 s in all) zlib cost
 // about 7 s more than LZ4 for a file 18 % smaller that meshio also reads, so zlib is the
-// default and LZ4 an option. zlib levels 3 to 6 write 1.2 to 2.8 times slower than
+// default and LZ4 an option (measured before zlib stored the floating-point arrays, see
+// below). zlib levels 3 to 6 write 1.2 to 2.8 times slower than
 // level 1 for files at most 1.5 % smaller, so the level is fixed at 1. Reading is slower
 // too (base64 and zlib): 5.0 s for the ONERA M6 file against 0.6 s before, 3.5 s with LZ4.
 //
@@ -32,8 +33,10 @@
 // wing: 2.10 to 1.80 s, 38.8 to 44.1 MB; ONERA M6 16k: 0.97 to 0.79 s, 15.4 to
 // 17.1 MB). Generated grids, whose coordinates repeat, lose more: bench/io/
 // vtk_write_bench 200 10 (800k prisms, 2 threads) writes 74 MB in 0.30 s instead of
-// 44 MB in 0.57 s. The table above, from VTK's writer, gives the encodings' costs on
-// one thread. .vtp surfaces, far smaller, are written by VTK.
+// 44 MB in 0.57 s (with the base64 text also encoded in parallel: 0.22-0.24 s; LZ4
+// 0.13-0.15 s and 65 MB, smaller than zlib's there). The table above, from VTK's
+// writer, gives the encodings' costs on one thread. .vtp surfaces, far smaller, are
+// written by VTK.
 //
 // Every writer goes through AtomicOutputs: the target appears complete or not at all.
 #pragma once
@@ -47,7 +50,7 @@
 namespace blayer {
 
 enum class VtkCompressor {
-  kZlib,  // smaller files that every VTK XML reader, meshio included, understands
+  kZlib,  // smaller layer-mesh files that every VTK XML reader, meshio included, understands
   kLz4,   // about 1.7 times faster to write and 1.13 to 1.19 times larger on layer meshes
           // (zlib stores their floating-point arrays); meshio cannot read it
 };
