@@ -57,13 +57,14 @@ class ObjParser {
   }
 
   void vertex() {
-    const std::string where = "vertex " + std::to_string(soup_.points.size()) + ": ";
-    if (tokens_.size() < 4) fail(where + "expected 'v x y z'");
+    // Message prefixes are built only for an error, not for every vertex.
+    auto where = [&] { return "vertex " + std::to_string(soup_.points.size()) + ": "; };
+    if (tokens_.size() < 4) fail(where() + "expected 'v x y z'");
     Vec3 p;
     for (int k = 0; k < 3; ++k) {
       const NumberStatus s = parse_double(tokens_[k + 1], &p[k]);
-      if (s != NumberStatus::kOk) fail(where + describe_bad_number(tokens_[k + 1], s, "a number", "double"));
-      if (!std::isfinite(p[k])) fail(where + quoted(tokens_[k + 1]) + " is not a finite number");
+      if (s != NumberStatus::kOk) fail(where() + describe_bad_number(tokens_[k + 1], s, "a number", "double"));
+      if (!std::isfinite(p[k])) fail(where() + quoted(tokens_[k + 1]) + " is not a finite number");
     }
     soup_.points.push_back(p);
   }
@@ -77,17 +78,17 @@ class ObjParser {
 
   // "v", "v/vt", "v//vn", "v/vt/vn" -> 0-based vertex index.
   int reference(std::string_view token) {
-    const std::string where = "face " + std::to_string(soup_.faces.size()) + ": ";
+    auto where = [&] { return "face " + std::to_string(soup_.faces.size()) + ": "; };
     const std::string_view v = token.substr(0, token.find('/'));
     std::int64_t n = 0;
     const NumberStatus s = parse_int64(v, &n);
     if (s != NumberStatus::kOk || n < -kMaxElementCount || n > kMaxElementCount)
-      fail(where + "vertex reference " + quoted(token) + " is not an integer in int range");
-    if (n == 0) fail(where + "vertex reference 0 (OBJ numbers vertices from 1)");
+      fail(where() + "vertex reference " + quoted(token) + " is not an integer in int range");
+    if (n == 0) fail(where() + "vertex reference 0 (OBJ numbers vertices from 1)");
     const auto defined = static_cast<std::int64_t>(soup_.points.size());
     if (n < 0) {
       if (-n > defined)
-        fail(where + "relative vertex reference " + std::to_string(n) + " reaches before the first vertex (" +
+        fail(where() + "relative vertex reference " + std::to_string(n) + " reaches before the first vertex (" +
              std::to_string(defined) + " defined so far)");
       return static_cast<int>(defined + n);
     }

@@ -118,9 +118,10 @@ class OffParser {
   double coordinate(std::string_view token, std::int64_t vertex) {
     double v = 0.0;
     const NumberStatus s = parse_double(token, &v);
-    const std::string where = "vertex " + std::to_string(vertex) + ": ";
-    if (s != NumberStatus::kOk) fail(where + describe_bad_number(token, s, "a number", "double"));
-    if (!std::isfinite(v)) fail(where + quoted(token) + " is not a finite number");
+    // The message's prefix is built only for an error, not for every coordinate.
+    auto where = [&] { return "vertex " + std::to_string(vertex) + ": "; };
+    if (s != NumberStatus::kOk) fail(where() + describe_bad_number(token, s, "a number", "double"));
+    if (!std::isfinite(v)) fail(where() + quoted(token) + " is not a finite number");
     return v;
   }
 

@@ -155,10 +155,12 @@ class AsciiStl {
   float coordinate(std::string_view token, int corner) {
     float v = 0.0f;
     const NumberStatus s = parse_float(token, &v);
-    const std::string where = "facet " + std::to_string(n_facets_) + ", corner " + std::to_string(corner) + ": ";
+    // The message's prefix is built only for an error: on every coordinate its strings
+    // were most of an ASCII file's parse time.
+    auto where = [&] { return "facet " + std::to_string(n_facets_) + ", corner " + std::to_string(corner) + ": "; };
     if (s != NumberStatus::kOk)
-      fail_value(where + describe_bad_number(token, s, "a number", "float (STL stores single precision)"));
-    if (!std::isfinite(v)) fail_value(where + quoted(token) + " is not a finite number");
+      fail_value(where() + describe_bad_number(token, s, "a number", "float (STL stores single precision)"));
+    if (!std::isfinite(v)) fail_value(where() + quoted(token) + " is not a finite number");
     return v;
   }
 
