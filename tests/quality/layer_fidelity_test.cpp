@@ -315,6 +315,37 @@ TEST(NearestTriangle, TreeDistanceEqualsBruteForceMinimum) {
   }
 }
 
+// A flat strip whose triangles shrink 16-fold in width towards x = 0, 500 of them (the
+// narrowest 2^-996 wide): all centroids but the widest pair's share a bin, so the
+// surface-area split peels off one pair per level, and without the depth cap the tree
+// would be about 250 levels deep and overflow the query's fixed stack of 128 entries.
+// The tree must still return the minimum over all triangles of the same closest-point
+// function (its own accuracy is tested above).
+TEST(NearestTriangle, StripGradedOverHundredsOfOrdersKeepsTheTreeShallowAndExact) {
+  TriSurface s;
+  const int n = 250;
+  for (int k = 0; k <= n; ++k) {
+    const double x = std::ldexp(1.0, -4 * k);
+    s.points.push_back({x, 0.0, 0.0});
+    s.points.push_back({x, 1.0, 0.0});
+  }
+  for (int k = 0; k < n; ++k) {
+    s.triangles.push_back({2 * k, 2 * k + 2, 2 * k + 1});
+    s.triangles.push_back({2 * k + 1, 2 * k + 2, 2 * k + 3});
+  }
+  const detail::NearestTriangleTree tree(s);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.5, 1.5);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 p{trial % 2 ? std::ldexp(u(rng) + 0.5, -4 * (trial % 250)) : u(rng), u(rng), 1e-3 * u(rng)};
+    double brute = std::numeric_limits<double>::infinity();
+    for (const Triangle& t : s.triangles)
+      brute = std::min(brute, norm(detail::closest_point_on_triangle(p, s.points[t[0]], s.points[t[1]],
+                                                                     s.points[t[2]]) - p));
+    ASSERT_EQ(tree.nearest(p).distance, brute) << "trial " << trial;
+  }
+}
+
 TEST(NearestTriangle, DistanceToABoxMatchesItsClosedForm) {
   // Outside an axis-aligned box the distance is the length of the per-axis excess.
   const Vec3 lo{0, 0, 0}, hi{1, 2, 3};
