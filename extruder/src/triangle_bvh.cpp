@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "blayer/core/surface_area_split.h"
+
 namespace blayer {
 
 namespace {
@@ -13,10 +15,6 @@ namespace {
 // Subtrees above this many items are built in parallel; below it the task overhead
 // outweighs the work.
 constexpr int kParallelBuildItems = 1 << 12;
-
-// Centroid bins per axis of the surface-area split (16 is the usual choice: more bins
-// refine the split little, fewer coarsen it on graded meshes).
-constexpr int kSplitBins = 16;
 
 // Below this depth nodes are split by surface area, deeper ones at the median. A
 // surface-area split may peel off a few items per level (boxes graded over hundreds of
@@ -26,11 +24,6 @@ constexpr int kSplitBins = 16;
 // levels on graded chains, graded sheets and 20k nested random boxes.
 constexpr int kMaxSurfaceAreaDepth = 40;
 
-double surface_area(const Box& b) {
-  const double x = b.hi[0] - b.lo[0], y = b.hi[1] - b.lo[1], z = b.hi[2] - b.lo[2];
-  return x * y + y * z + z * x;
-}
-
 void unite(Box* a, const Box& b) {
   for (int k = 0; k < 3; ++k) {
     a->lo[k] = std::min(a->lo[k], b.lo[k]);
@@ -38,15 +31,14 @@ void unite(Box* a, const Box& b) {
   }
 }
 
-// Adds b, the union of `weight` boxes, to the running union *acc of *n boxes.
-void accumulate(Box* acc, int* n, const Box& b, int weight = 1) {
-  if (weight == 0) return;
+// Adds b to the running union *acc of *n boxes.
+void accumulate(Box* acc, int* n, const Box& b) {
   if (*n == 0) {
     *acc = b;
   } else {
     unite(acc, b);
   }
-  *n += weight;
+  ++*n;
 }
 
 }  // namespace
@@ -55,13 +47,10 @@ void accumulate(Box* acc, int* n, const Box& b, int weight = 1) {
 // indices from 0, items' indices absolute); the caller shifts the inner nodes' child
 // indices when it places the subtree.
 //
-// Why the surface-area split rather than the median: on surfaces that mix long, thin
-// triangles with small ones (the pyHyp wings' trailing edges and tips), a median split
-// puts long boxes into many nodes, whose boxes then overlap widely; the surface-area
-// heuristic (binned, over all three axes) keeps them together. Measured against the
-// median split: the extrusion's checks 0.86 -> 0.65 s on the BWB (54k triangles), 0.43
-// -> 0.31 s on the 717 wing, 0.72 -> 0.49 s on the fanned sliver segment, the same on
-// the ONERA M6 16k. The result is still a pure function of the input.
+// Nodes are split by surface area (core/surface_area_split.h says why). Measured against
+// the median split: the extrusion's checks 0.86 -> 0.65 s on the BWB (54k triangles),
+// 0.43 -> 0.31 s on the 717 wing, 0.72 -> 0.49 s on the fanned sliver segment, the same
+// on the ONERA M6 16k. The result is still a pure function of the input.
 struct TriangleBvh::Builder {
   const std::vector<Box>& boxes;
   const std::vector<Vec3>& centre;
@@ -111,60 +100,17 @@ struct TriangleBvh::Builder {
   }
 
   // Reorders items[first, first + count) so that the left child takes the first l of
-  // them, and returns l (0 < l < count): the binned surface-area split of least
-  // area(left) * n_left + area(right) * n_right, or the median split when no axis has
-  // two distinct centroids or no split has a finite cost.
+  // them, and returns l (0 < l < count): the binned surface-area split
+  // (core/surface_area_split.h), or the median split when it finds none.
   int surface_area_split(int first, int count, const Box& cb) const {
-    // One pass over the items bins them on all three axes at once (their boxes and
-    // centroids are read once, not once per axis).
-    double lo[3], scale[3];
-    bool splittable[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      const double ext = cb.hi[axis] - cb.lo[axis];
-      lo[axis] = cb.lo[axis];
-      splittable[axis] = ext > 0.0;
-      scale[axis] = splittable[axis] ? kSplitBins / ext : 0.0;
-    }
-    Box bin_box[3][kSplitBins];
-    int bin_count[3][kSplitBins] = {};
-    for (int i = first; i < first + count; ++i) {
-      const Box& box = boxes[items[i]];
-      for (int axis = 0; axis < 3; ++axis) {
-        const int bin = bin_of(items[i], axis, lo[axis], scale[axis]);
-        accumulate(&bin_box[axis][bin], &bin_count[axis][bin], box);
-      }
-    }
-    double best_cost = HUGE_VAL;
-    int best_axis = -1, best_bin = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!splittable[axis]) continue;
-      // right_area[i]: the bins after i together.
-      double right_area[kSplitBins];
-      int right_count[kSplitBins];
-      Box acc;
-      int n = 0;
-      for (int bin = kSplitBins - 1; bin > 0; --bin) {
-        accumulate(&acc, &n, bin_box[axis][bin], bin_count[axis][bin]);
-        right_area[bin - 1] = n > 0 ? surface_area(acc) : 0.0;
-        right_count[bin - 1] = n;
-      }
-      n = 0;
-      for (int bin = 0; bin < kSplitBins - 1; ++bin) {
-        accumulate(&acc, &n, bin_box[axis][bin], bin_count[axis][bin]);
-        if (n == 0 || right_count[bin] == 0) continue;
-        const double cost = surface_area(acc) * n + right_area[bin] * right_count[bin];
-        if (cost < best_cost) {
-          best_cost = cost;
-          best_axis = axis;
-          best_bin = bin;
-        }
-      }
-    }
-    if (best_axis < 0) return median_split(first, count, cb);
-    const auto mid = std::partition(items.begin() + first, items.begin() + first + count, [&](int it) {
-      return bin_of(it, best_axis, lo[best_axis], scale[best_axis]) <= best_bin;
-    });
-    return static_cast<int>(mid - (items.begin() + first));
+    const int l = ::blayer::surface_area_split(
+        items.data() + first, count, cb.lo, cb.hi,
+        [&](int item, Vec3* lo, Vec3* hi) {
+          *lo = boxes[item].lo;
+          *hi = boxes[item].hi;
+        },
+        [&](int item) -> const Vec3& { return centre[item]; });
+    return l < 0 ? median_split(first, count, cb) : l;
   }
 
   // Halves items[first, first + count) at the median centroid of the longest axis of
@@ -181,14 +127,6 @@ struct TriangleBvh::Builder {
                        return ca < cb2 || (ca == cb2 && a < b);
                      });
     return l;
-  }
-
-  // The bin of an item's centroid; a non-finite position (from a NaN or overflowing
-  // coordinate) goes to the first bin, without an undefined float-to-int conversion.
-  int bin_of(int item, int axis, double lo, double scale) const {
-    const double t = (centre[item][axis] - lo) * scale;
-    if (t >= kSplitBins - 1) return kSplitBins - 1;
-    return t > 0.0 ? static_cast<int>(t) : 0;
   }
 };
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <utility>
 
+#include "blayer/core/surface_area_split.h"
+
 namespace blayer {
 namespace detail {
 
@@ -71,77 +73,6 @@ NearestTriangleTree::NearestTriangleTree(const TriSurface& surface) : surface_(s
   if (n > 0) build(0, n, 0);
 }
 
-int NearestTriangleTree::surface_area_split(int begin, int end, const Vec3& clo, const Vec3& chi) {
-  constexpr int kBins = 16;
-  double lo[3], scale[3];
-  for (int k = 0; k < 3; ++k) {
-    const double ext = chi[k] - clo[k];
-    lo[k] = clo[k];
-    scale[k] = ext > 0.0 ? kBins / ext : 0.0;
-  }
-  auto bin_of = [&](int t, int k) {
-    const double x = (centroid_[t][k] - lo[k]) * scale[k];
-    if (x >= kBins - 1) return kBins - 1;
-    return x > 0.0 ? static_cast<int>(x) : 0;
-  };
-  const double inf = std::numeric_limits<double>::infinity();
-  Vec3 blo[3][kBins], bhi[3][kBins];
-  int count[3][kBins] = {};
-  for (int k = 0; k < 3; ++k)
-    for (int b = 0; b < kBins; ++b) blo[k][b] = {inf, inf, inf}, bhi[k][b] = {-inf, -inf, -inf};
-  for (int i = begin; i < end; ++i) {
-    const int t = order_[i];
-    const Triangle& tri = surface_.triangles[t];
-    Vec3 tlo = surface_.points[tri[0]], thi = tlo;
-    for (int v = 1; v < 3; ++v)
-      for (int c = 0; c < 3; ++c) {
-        tlo[c] = std::min(tlo[c], surface_.points[tri[v]][c]);
-        thi[c] = std::max(thi[c], surface_.points[tri[v]][c]);
-      }
-    for (int k = 0; k < 3; ++k) {
-      const int b = bin_of(t, k);
-      ++count[k][b];
-      for (int c = 0; c < 3; ++c) {
-        blo[k][b][c] = std::min(blo[k][b][c], tlo[c]);
-        bhi[k][b][c] = std::max(bhi[k][b][c], thi[c]);
-      }
-    }
-  }
-  auto area = [](const Vec3& a, const Vec3& b) {
-    const double x = b[0] - a[0], y = b[1] - a[1], z = b[2] - a[2];
-    return x * y + y * z + z * x;
-  };
-  double best = inf;
-  int best_k = -1, best_b = 0;
-  for (int k = 0; k < 3; ++k) {
-    if (!(scale[k] > 0.0)) continue;
-    double right_area[kBins];
-    int right_count[kBins];
-    Vec3 alo = {inf, inf, inf}, ahi = {-inf, -inf, -inf};
-    int n = 0;
-    for (int b = kBins - 1; b > 0; --b) {
-      n += count[k][b];
-      for (int c = 0; c < 3; ++c) alo[c] = std::min(alo[c], blo[k][b][c]), ahi[c] = std::max(ahi[c], bhi[k][b][c]);
-      right_area[b - 1] = n > 0 ? area(alo, ahi) : 0.0;
-      right_count[b - 1] = n;
-    }
-    alo = {inf, inf, inf};
-    ahi = {-inf, -inf, -inf};
-    n = 0;
-    for (int b = 0; b < kBins - 1; ++b) {
-      n += count[k][b];
-      for (int c = 0; c < 3; ++c) alo[c] = std::min(alo[c], blo[k][b][c]), ahi[c] = std::max(ahi[c], bhi[k][b][c]);
-      if (n == 0 || right_count[b] == 0) continue;
-      const double cost = area(alo, ahi) * n + right_area[b] * right_count[b];
-      if (cost < best) best = cost, best_k = k, best_b = b;
-    }
-  }
-  if (best_k < 0) return -1;
-  const auto m =
-      std::partition(order_.begin() + begin, order_.begin() + end, [&](int t) { return bin_of(t, best_k) <= best_b; });
-  return static_cast<int>(m - order_.begin());
-}
-
 int NearestTriangleTree::build(int begin, int end, int depth) {
   Node node;
   const double inf = std::numeric_limits<double>::infinity();
@@ -165,7 +96,22 @@ int NearestTriangleTree::build(int begin, int end, int depth) {
   const int id = static_cast<int>(nodes_.size());
   nodes_.push_back(node);
   if (end - begin <= kLeafSize) return id;
-  int mid = depth < kMaxSurfaceAreaDepth ? surface_area_split(begin, end, clo, chi) : -1;
+  int mid = -1;
+  if (depth < kMaxSurfaceAreaDepth) {
+    const int l = surface_area_split(
+        order_.data() + begin, end - begin, clo, chi,
+        [&](int t, Vec3* lo, Vec3* hi) {
+          const Triangle& tri = surface_.triangles[t];
+          *lo = *hi = surface_.points[tri[0]];
+          for (int v = 1; v < 3; ++v)
+            for (int k = 0; k < 3; ++k) {
+              (*lo)[k] = std::min((*lo)[k], surface_.points[tri[v]][k]);
+              (*hi)[k] = std::max((*hi)[k], surface_.points[tri[v]][k]);
+            }
+        },
+        [&](int t) -> const Vec3& { return centroid_[t]; });
+    if (l > 0) mid = begin + l;
+  }
   if (mid < 0) {
     int axis = 0;
     for (int k = 1; k < 3; ++k)

@@ -17,8 +17,8 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 
 // Axis-aligned box tree over the triangles of a surface (copied), built once, leaves of
 // at most kLeafSize triangles. Nodes are split by the binned surface-area heuristic
-// (16 centroid bins on each axis), which keeps the long thin triangles of graded wings
-// out of the small ones' boxes: on the pyHyp BWB, 107k queries near the wall took 235
+// (core/surface_area_split.h), which keeps the long thin triangles of graded wings out
+// of the small ones' boxes: on the pyHyp BWB, 107k queries near the wall took 235
 // instead of 316 ms with median splits. Below depth kMaxSurfaceAreaDepth, and where no
 // axis splits, the median of the longest centroid axis is used, so the depth stays
 // below 72 and the query's fixed stack (one entry per level plus one) cannot overflow.
@@ -45,9 +45,6 @@ class NearestTriangleTree {
     int left = -1, right = -1;
   };
   int build(int begin, int end, int depth);
-  // Reorders order_[begin, end) so that the left child takes [begin, returned); -1 when
-  // no axis has two distinct centroids.
-  int surface_area_split(int begin, int end, const Vec3& clo, const Vec3& chi);
 
   TriSurface surface_;  // a copy: the tree outlives no caller's surface by accident
   std::vector<int> order_;
