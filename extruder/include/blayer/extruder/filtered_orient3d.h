@@ -41,6 +41,14 @@ constexpr double kMaxDifference = 1e100;
 constexpr double kUnderflowSlack = 1e-220;
 constexpr double kOrient3dErrBound = (7.0 + 68.0 * 1.1102230246251565e-16) * 1.1102230246251565e-16;
 
+// The sign of a determinant evaluated as above, given its permanent and the largest
+// difference that multiplies a minor; 0 when the filter cannot decide.
+inline int certain_sign(double det, double permanent, double largest_factor) {
+  if (!(permanent >= 1e-200 && permanent <= 1e200 && largest_factor <= kMaxDifference)) return 0;
+  const double err = kOrient3dErrBound * permanent + kUnderflowSlack;
+  return det > err ? 1 : -det > err ? -1 : 0;
+}
+
 // Same contract as orient3d_sign: the sign of det[b-a, c-a, d-a].
 inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   // Shewchuk's orient3d(pa, pb, pc, pd) = det[pa-pd, pb-pd, pc-pd] = -det[b-a, c-a, d-a].
@@ -54,12 +62,8 @@ inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const 
   const double az = std::fabs(adz), bz = std::fabs(bdz), cz = std::fabs(cdz);
   const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * az + (std::fabs(cdxady) + std::fabs(adxcdy)) * bz +
                            (std::fabs(adxbdy) + std::fabs(bdxady)) * cz;
-  if (permanent >= 1e-200 && permanent <= 1e200 && std::max(az, std::max(bz, cz)) <= kMaxDifference) {
-    const double err = kOrient3dErrBound * permanent + kUnderflowSlack;
-    if (det > err) return -1;
-    if (-det > err) return 1;
-  }
-  return orient3d_sign(a, b, c, d);
+  const int sign = certain_sign(det, permanent, std::max(az, std::max(bz, cz)));
+  return sign != 0 ? -sign : orient3d_sign(a, b, c, d);
 }
 
 // out[i] = orient3d_filtered(a, b, c, p[i]) for i < n, with the plane's minors shared.
@@ -73,20 +77,9 @@ inline void orient3d_sides(const Vec3& a, const Vec3& b, const Vec3& c, const Ve
   for (int i = 0; i < n; ++i) {
     const double qx = p[i][0] - a[0], qy = p[i][1] - a[1], qz = p[i][2] - a[2];
     const double ax = std::fabs(qx), ay = std::fabs(qy), az = std::fabs(qz);
-    const double det = qx * mx + qy * my + qz * mz;
-    const double permanent = ax * px_perm + ay * py_perm + az * pz_perm;
-    if (permanent >= 1e-200 && permanent <= 1e200 && std::max(ax, std::max(ay, az)) <= kMaxDifference) {
-      const double err = kOrient3dErrBound * permanent + kUnderflowSlack;
-      if (det > err) {
-        out[i] = 1;
-        continue;
-      }
-      if (-det > err) {
-        out[i] = -1;
-        continue;
-      }
-    }
-    out[i] = orient3d_sign(a, b, c, p[i]);
+    const int sign = certain_sign(qx * mx + qy * my + qz * mz, ax * px_perm + ay * py_perm + az * pz_perm,
+                                  std::max(ax, std::max(ay, az)));
+    out[i] = sign != 0 ? sign : orient3d_sign(a, b, c, p[i]);
   }
 }
 
