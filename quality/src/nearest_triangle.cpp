@@ -73,6 +73,16 @@ NearestTriangleTree::NearestTriangleTree(const TriSurface& surface) : surface_(s
   if (n > 0) build(0, n, 0);
 }
 
+void NearestTriangleTree::triangle_box(int t, Vec3* lo, Vec3* hi) const {
+  const Triangle& tri = surface_.triangles[t];
+  *lo = *hi = surface_.points[tri[0]];
+  for (int v = 1; v < 3; ++v)
+    for (int k = 0; k < 3; ++k) {
+      (*lo)[k] = std::min((*lo)[k], surface_.points[tri[v]][k]);
+      (*hi)[k] = std::max((*hi)[k], surface_.points[tri[v]][k]);
+    }
+}
+
 int NearestTriangleTree::build(int begin, int end, int depth) {
   Node node;
   const double inf = std::numeric_limits<double>::infinity();
@@ -80,13 +90,11 @@ int NearestTriangleTree::build(int begin, int end, int depth) {
   node.hi = {-inf, -inf, -inf};
   Vec3 clo = node.lo, chi = node.hi;
   for (int i = begin; i < end; ++i) {
-    const Triangle& tri = surface_.triangles[order_[i]];
-    for (int v : tri)
-      for (int k = 0; k < 3; ++k) {
-        node.lo[k] = std::min(node.lo[k], surface_.points[v][k]);
-        node.hi[k] = std::max(node.hi[k], surface_.points[v][k]);
-      }
+    Vec3 lo, hi;
+    triangle_box(order_[i], &lo, &hi);
     for (int k = 0; k < 3; ++k) {
+      node.lo[k] = std::min(node.lo[k], lo[k]);
+      node.hi[k] = std::max(node.hi[k], hi[k]);
       clo[k] = std::min(clo[k], centroid_[order_[i]][k]);
       chi[k] = std::max(chi[k], centroid_[order_[i]][k]);
     }
@@ -100,15 +108,7 @@ int NearestTriangleTree::build(int begin, int end, int depth) {
   if (depth < kMaxSurfaceAreaDepth) {
     const int l = surface_area_split(
         order_.data() + begin, end - begin, clo, chi,
-        [&](int t, Vec3* lo, Vec3* hi) {
-          const Triangle& tri = surface_.triangles[t];
-          *lo = *hi = surface_.points[tri[0]];
-          for (int v = 1; v < 3; ++v)
-            for (int k = 0; k < 3; ++k) {
-              (*lo)[k] = std::min((*lo)[k], surface_.points[tri[v]][k]);
-              (*hi)[k] = std::max((*hi)[k], surface_.points[tri[v]][k]);
-            }
-        },
+        [&](int t, Vec3* lo, Vec3* hi) { triangle_box(t, lo, hi); },
         [&](int t) -> const Vec3& { return centroid_[t]; });
     if (l > 0) mid = begin + l;
   }

@@ -45,6 +45,7 @@ class NearestTriangleTree {
     int left = -1, right = -1;
   };
   int build(int begin, int end, int depth);
+  void triangle_box(int t, Vec3* lo, Vec3* hi) const;
 
   TriSurface surface_;  // a copy: the tree outlives no caller's surface by accident
   std::vector<int> order_;
