@@ -142,12 +142,15 @@ class CandidatePool {
 
 // Generators that cannot give a maximiser any more. A critical point x of D is built
 // from sites nearest to it: a point site w there has angle(x, w) = D(x), an arc site c
-// has its foot inside and arcsin|x.g_c| = D(x). A candidate that can still become a
+// has its foot inside and arcsin|x.g_c| = D(x). A maximiser is fluid, and a fluid
+// direction whose nearest feature is an arc's interior lies on the side of its normal,
+// x.g_c > 0 (docs/normals.md, "Fluid side"). A candidate that can still become a
 // maximiser has D(x) >= thr (the pool's threshold, which only rises), so
-//   x.w <= cos(thr) |x|  and  |x.g_c| >= sin(thr) |x|:
-// x lies within 90 deg - thr of +-g_c, a bisector {n.h = 0} carrying it passes that
-// near, |h.g_c| <= cos thr, and two arc generators have poles (or antipodes) at most
-// 2 (90 deg - thr) apart; above 90 degrees no arc generates a maximiser at all.
+//   x.w <= cos(thr) |x|  and  x.g_c >= sin(thr) |x|:
+// x lies within 90 deg - thr of the pole g_c (not of its antipode, which holds only
+// solid-side candidates), a bisector {n.h = 0} carrying it passes that near,
+// |h.g_c| <= cos thr, and two arc generators have poles at most 2 (90 deg - thr) apart;
+// above 90 degrees no arc generates a maximiser at all.
 // Candidates so ruled out that are not critical points (built from a site that is not
 // nearest to them) are lost; those are not needed (site_subdivision.h, "Exactness").
 class ArcReachScreen {
@@ -162,8 +165,8 @@ class ArcReachScreen {
   bool arc_pair(const Vec3& a, const Vec3& b) const {
     update();
     if (!active_) return false;
-    // Both within 90 deg - thr of +-g: |a.b| >= cos(2 (90 deg - thr)) = -cos(2 thr).
-    return no_arcs_ || std::fabs(dot(a, b)) < cos_pair_ - kMargin;
+    // Both within 90 deg - thr of x: a.b >= cos(2 (90 deg - thr)) = -cos(2 thr).
+    return no_arcs_ || dot(a, b) < cos_pair_ - kMargin;
   }
   bool point_ok(const Vec3& x, const Vec3& w) const {
     update();
@@ -172,7 +175,7 @@ class ArcReachScreen {
   bool arc_ok(const Vec3& x, const Vec3& g) const {
     update();
     if (!active_) return true;
-    return !no_arcs_ && std::fabs(dot(x, g)) >= (sin_thr_ - kMargin) * norm(x);
+    return !no_arcs_ && dot(x, g) >= (sin_thr_ - kMargin) * norm(x);
   }
 
  private:

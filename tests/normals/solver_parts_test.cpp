@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "blayer/normals/most_normal.h"
@@ -16,6 +17,7 @@
 #include "candidate_pool.h"
 #include "fan_sites.h"
 #include "link_vertex_lens.h"
+#include "most_normal_enumeration.h"
 #include "random_fans.h"
 #include "site_subdivision.h"
 #include "test_fans.h"
@@ -121,6 +123,47 @@ TEST(PlateauEnvelope, PeaksAsHighAsAllPairwiseCrossings) {
     EXPECT_GE(best_envelope, best_all - 1e-12) << "circle " << t;
   }
   EXPECT_GT(n, 100);
+}
+
+// The generator screen keeps an arc only on its fluid side: a direction at its pole
+// passes, its antipode does not, nor a pair of arcs whose poles are antipodal.
+TEST(ArcReachScreen, KeepsArcGeneratorsOnTheirFluidSideOnly) {
+  FanGeometry g;
+  for (const testing_fans::TestFan& f : testing_fans::public_fans())
+    if (std::string(f.name) == "T8") g = testing_fans::geometry(f.ring);  // monkey saddle
+  ASSERT_EQ(g.n_faces(), 6);
+  detail::CandidatePool pool(g, default_tolerances(), true, 0.1);
+  pool.raise_floor({0.0, 0.0, 1.0}, 1.0);
+  const detail::ArcReachScreen screen(pool);
+  const Vec3 f = g.face_normals[0];
+  EXPECT_TRUE(screen.arc_ok(f, f));
+  EXPECT_FALSE(screen.arc_ok(-f, f));
+  EXPECT_FALSE(screen.arc_pair(f, f));
+  EXPECT_TRUE(screen.arc_pair(f, -f));
+}
+
+// The premise of that screen, on the enumeration's own maximisers: every arc that
+// generates one (foot inside, at the optimum's distance) has it on the side of its
+// normal, at x.g = sin D.
+TEST(ArcReachScreen, EveryArcGeneratorOfAMaximiserHasItOnItsNormalSide) {
+  std::mt19937 rng(515);
+  int generators = 0;
+  for (Shape shape : {Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kSliver, Shape::kWild})
+    for (int t = 0; t < 60; ++t) {
+      const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, shape));
+      if (g.any_degenerate) continue;
+      for (bool constrained : {true, false})
+        for (const detail::Maximizer& m : detail::most_normal_maximizers(g, default_tolerances(), constrained, false))
+          for (int i = 0; i < g.n_faces(); ++i) {
+            const Vec3& f = g.face_normals[i];
+            const Vec3 foot = m.n - dot(m.n, f) * f;
+            const bool inside = dot(cross(g.arc_start(i), foot), f) > 0.0 && dot(cross(foot, g.arc_end(i)), f) > 0.0;
+            if (!inside || std::fabs(std::asin(std::min(1.0, std::fabs(dot(m.n, f)))) - m.d) > 1e-9) continue;
+            ++generators;
+            EXPECT_NEAR(dot(m.n, f), std::sin(m.d), 1e-9) << testing_fans::shape_name(shape) << " " << t << " arc " << i;
+          }
+    }
+  EXPECT_GT(generators, 300);
 }
 
 }  // namespace
