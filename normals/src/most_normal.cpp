@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -136,7 +137,13 @@ constexpr int kMaxEnumeratedSites = 12;
 // The candidate passes of the default solver; *n_cells reports the subdivision's work.
 bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerances& tol, CandidatePool* pool,
                     int* n_cells) {
-  detail::SiteSubdivision subdivision(sites, pool);
+  // Built on first use: the screened enumeration alone, which answers most wing-skin
+  // fans, does not need its per-arc tables.
+  std::optional<detail::SiteSubdivision> lazy;
+  auto subdivision = [&]() -> detail::SiteSubdivision& {
+    if (!lazy) lazy.emplace(sites, pool);
+    return *lazy;
+  };
   // The cap antipode maximises the link-vertex bound g >= D; above 90 degrees the region
   // g >= threshold, which holds every candidate that can still become a maximiser, is
   // convex around it and often tiny (link_vertex_lens.h).
@@ -161,28 +168,28 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
   const int n_sites = static_cast<int>(sites.points.size() + sites.arcs.size());
   bool subdivided = true;
   if (radius > 0.0) {
-    subdivision.unconstrained_candidates_near(-cap.normal, radius);
+    subdivision().unconstrained_candidates_near(-cap.normal, radius);
   } else if (n_sites <= kMaxEnumeratedSites) {
     detail::enumerate_screened(sites, pool);
     subdivided = false;
   } else {
-    subdivision.unconstrained_candidates();
+    subdivision().unconstrained_candidates();
   }
   // Plateaus first: their feasible part may reach the unconstrained optimum.
   const bool non_unique = pool->unconstrained_maxima_distinct() || pool->constrained_maxima_distinct();
   if (non_unique) {
     if (subdivided) {
-      subdivision.plateau_peaks();
+      subdivision().plateau_peaks();
     } else {
       detail::enumerate_plateau_peaks(sites, pool);
     }
   }
   if (pool->limited()) {
     // The constraint circles are searched leaf by leaf: a small fan gets its leaves now.
-    if (!subdivided) subdivision.unconstrained_candidates();
-    subdivision.constraint_circles();
+    if (!subdivided) subdivision().unconstrained_candidates();
+    subdivision().constraint_circles();
   }
-  *n_cells = subdivision.stats().cells;
+  *n_cells = lazy ? lazy->stats().cells : 0;
   return non_unique;
 }
 
