@@ -71,6 +71,10 @@ bool coplanar_same_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
   return orient2d(A, B, C) * orient2d(A, B, D) > 0;
 }
 
+// segment_intersects_triangle given the orientations of p and q against the plane abc.
+bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c,
+                            const int* side);
+
 // All three signs equal and non-zero: the triangle lies strictly on one side of the plane.
 bool strictly_one_side(int a, int b, int c) { return a != 0 && a == b && a == c; }
 
@@ -96,6 +100,13 @@ bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, co
   const Vec3 ends[2] = {p, q};
   int side[2];
   detail::orient3d_sides(a, b, c, ends, 2, side);
+  return segment_meets_triangle(p, q, a, b, c, side);
+}
+
+namespace {
+
+bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c,
+                            const int* side) {
   const int sp = side[0], sq = side[1];
   if (sp == 0 && sq == 0) return coplanar_segment_triangle(p, q, a, b, c);
   if (sp * sq > 0) return false;
@@ -105,6 +116,8 @@ bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, co
             o3 = detail::orient3d_filtered(p, q, c, a);
   return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
 }
+
+}  // namespace
 
 bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangle& s, const IndexedTriangle& t) {
   if (names_a_point_twice(s) || names_a_point_twice(t)) return false;  // else more than 3 shared pairs could be counted
@@ -134,7 +147,15 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
     const Vec3& ta = pts[t[(it + 1) % 3]];
     const Vec3& tb = pts[t[(it + 2) % 3]];
     const Vec3& v = pts[s[is]];
-    return segment_intersects_triangle(sa, sb, v, ta, tb) || segment_intersects_triangle(ta, tb, v, sa, sb);
+    // A triangle whose far edge lies strictly on one side of the other's plane meets it
+    // at v alone: the first plane test settles most neighbours of a front.
+    const Vec3 s_far[2] = {sa, sb}, t_far[2] = {ta, tb};
+    int s_side[2], t_side[2];
+    detail::orient3d_sides(v, ta, tb, s_far, 2, s_side);
+    if (s_side[0] * s_side[1] > 0) return false;
+    detail::orient3d_sides(v, sa, sb, t_far, 2, t_side);
+    if (t_side[0] * t_side[1] > 0) return false;
+    return segment_meets_triangle(sa, sb, v, ta, tb, s_side) || segment_meets_triangle(ta, tb, v, sa, sb, t_side);
   }
   const Vec3 S[3] = {pts[s[0]], pts[s[1]], pts[s[2]]};
   const Vec3 T[3] = {pts[t[0]], pts[t[1]], pts[t[2]]};

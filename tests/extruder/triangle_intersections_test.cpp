@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "blayer/extruder/triangle_bvh.h"
 #include "lcg.h"
@@ -82,6 +83,40 @@ TEST(TriangleIntersections, PushingAVertexThroughTheSphereIsFound) {
 
 
 // The BVH-based search must find exactly the pairs a brute-force double loop finds.
+// Two triangles sharing one vertex meet beyond it iff an edge opposite the shared vertex
+// meets the other triangle: the plane tests that settle most pairs first must give the
+// same verdict, also on grid points where points are coplanar or collinear (triangles of
+// zero area aside: the edge tests treat them as planes).
+TEST(TriangleIntersections, SharedVertexVerdictIsTheOppositeEdgeTests) {
+  testing::Lcg lcg(777);
+  auto grid = [&]() { return std::floor(lcg.uniform() * 5.0) - 2.0; };
+  auto flat = [](const Vec3& a, const Vec3& b, const Vec3& c) { return norm2(cross(b - a, c - a)) == 0.0; };
+  int crossing = 0, apart = 0;
+  for (int t = 0; t < 20000; ++t) {
+    std::vector<Vec3> p(5);
+    p[0] = {0.0, 0.0, 0.0};
+    for (int i = 1; i < 5; ++i)
+      p[i] = t % 2 == 0 ? Vec3{grid(), grid(), grid() * (t % 4 == 0 ? 0.0 : 1.0)}
+                        : Vec3{lcg.uniform() - 0.5, lcg.uniform() - 0.5, lcg.uniform() - 0.5};
+    if (flat(p[0], p[1], p[2]) || flat(p[0], p[3], p[4])) continue;
+    const bool expected = segment_intersects_triangle(p[1], p[2], p[0], p[3], p[4]) ||
+                          segment_intersects_triangle(p[3], p[4], p[0], p[1], p[2]);
+    // Ids 1-4 are distinct: the triangles share id 0 alone even where positions repeat.
+    ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {0, 3, 4}), expected) << "pair " << t;
+    (expected ? crossing : apart)++;
+  }
+  EXPECT_GT(crossing, 1000);
+  EXPECT_GT(apart, 1000);
+}
+
+// A zero-area triangle along a line through the shared vertex that leaves the other
+// triangle's plane there meets it at that vertex alone.
+TEST(TriangleIntersections, ZeroAreaNeighbourOffThePlaneMeetsOnlyAtTheSharedVertex) {
+  const std::vector<Vec3> p = {{0, 0, 0}, {-2, -2, 0}, {-1, -1, 0}, {1, 2, 1}, {0, 2, 0}};
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {0, 3, 4}));
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 3, 4}, {0, 1, 2}));
+}
+
 TEST(TriangleIntersections, TreeSearchMatchesBruteForceOnRandomTriangles) {
   testing::Lcg lcg(12345);
   auto rnd = [&]() { return lcg.uniform(); };
