@@ -40,6 +40,16 @@ constexpr double kBoundMargin = 1e-12;
 // <= 1).
 constexpr double kTrigMargin = 1e-15;
 
+// Allowance of the pair bound's cosine (SiteSubdivision::pair_bound_below): its dot and
+// cross products of unit-length data, and cos(thr), are computed to a few ulps, so 1e-12
+// keeps the comparison conservative by four orders.
+constexpr double kPairMargin = 1e-12;
+
+// The pair bound stops being tried after kPairTrials cells if it dropped fewer than one
+// in kPairRate of them.
+constexpr int kPairTrials = 64;
+constexpr int kPairRate = 16;
+
 // Upper bound of the angle between unit vectors at chord t = |a - b|: the angle is
 // 2 asin(t / 2) = t + t^3 / 24 + ..., below t + t^3 / 12 for t <= 1; the relative
 // allowance covers the rounding of t.
@@ -88,6 +98,7 @@ SiteSubdivision::SiteSubdivision(const FanSites& sites, CandidatePool* pool)
   arc_cos_.resize(k_);
   n_points_ = static_cast<int>(s_.points.size());
   point_stamp_.assign(s_.points.size(), 0);
+  vertex_stamp_.assign(g_.dirs.size(), 0);
   arc_stamp_.assign(na, 0);
 }
 
@@ -200,6 +211,10 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   for (int t = faces_begin; t < faces_end; ++t)
     if (dot(c, g_.face_normals[arena_[t]]) <= v_reach) arena_.push_back(arena_[t]);
   const int own_end = static_cast<int>(arena_.size());
+  if (pair_bound_below(c, rho, cos_reach, own_arcs, own_faces)) {
+    arena_.resize(own_arcs);
+    return;
+  }
 
   // The sites that can be nearest in the cell: reflex ends of the kept arcs within
   // reach, and merged arcs whose foot-inside lune meets the cap. A generator s of a
@@ -241,6 +256,41 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
                depth + 1, n_sites, stable);
   }
   arena_.resize(own_arcs);
+}
+
+bool SiteSubdivision::pair_bound_below(const Vec3& c, double rho, double cos_reach, int arcs_begin, int arcs_end) {
+  const double thr = pool_.threshold();
+  if (!(thr > 0.0) || thr > M_PI || rho >= 0.5 * M_PI) return false;
+  // Where no near-antipodal pair shapes the optimum the bound never prunes and only costs
+  // its pairs: after kPairTrials cells with less than one drop in kPairRate, it is no
+  // longer tried in this solve (a pure cost decision: dropping fewer cells is exact).
+  if (pair_tries_ >= kPairTrials && pair_drops_ * kPairRate < pair_tries_) return false;
+  ++pair_tries_;
+  // The ends of the cell's arcs that can be nearest in it (the others make looser pairs).
+  ++stamp_;
+  near_.clear();
+  for (int t = arcs_begin; t < arcs_end; ++t)
+    for (int j : {arena_[t], (arena_[t] + 1) % k_}) {
+      if (vertex_stamp_[j] == stamp_) continue;
+      vertex_stamp_[j] = stamp_;
+      const double cu = dot(c, g_.dirs[j]);
+      if (cu >= cos_reach) near_.push_back({cu, j});
+    }
+  const double cr = std::cos(rho), sr = std::sin(rho);
+  const double level = std::cos(thr) + kPairMargin;
+  // The bound's cosine is at most c.q cos(rho) = (c.u_a + c.u_b) cos(rho) / 2: with the
+  // vertices by decreasing c.u, each a's partners stop at the first b below that.
+  std::sort(near_.begin(), near_.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  const double pair_sum = 2.0 * level / cr;
+  const int n = static_cast<int>(near_.size());
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n && near_[a].first + near_[b].first > pair_sum; ++b) {
+      if (pair_cap_cosine(c, cr, sr, g_.dirs[near_[a].second], g_.dirs[near_[b].second]) > level) {
+        ++pair_drops_;
+        return true;
+      }
+    }
+  return false;
 }
 
 // Site ids: points 0 .. n_points_ - 1, then merged arcs.

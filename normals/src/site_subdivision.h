@@ -11,8 +11,9 @@
 // and a site s (distance d_s) can be the nearest one somewhere in the cell only if
 // d_s(c) <= D(c) + 2 rho; a face can give V only if c.f <= V(c) + 2 rho. A cell is
 // dropped when D(c) + rho is below the threshold (or, wholly invisible, below the
-// unconstrained one), or when it lies off the fluid side (D(c) > rho, so the cap meets
-// no arc, and c is not fluid). Otherwise it inherits the parent's surviving sites and
+// unconstrained one), when a pair of link vertices bounds D below it on the cap
+// (pair_cap_cosine), or when it lies off the fluid side (D(c) > rho, so the cap meets no
+// arc, and c is not fluid). Otherwise it inherits the parent's surviving sites and
 // faces and is split, until at most kLeafSites sites can be nearest in it, or they stop
 // changing, or the cell is tiny. An arc counts only where its interior can be nearest
 // (the cap meets its foot-inside lune) and can still reach the threshold.
@@ -37,6 +38,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "candidate_pool.h"
@@ -44,6 +46,17 @@
 
 namespace blayer {
 namespace detail {
+
+// A lower bound of max(n.u_a, n.u_b) over the cap B(c, rho) (unit c; cos_rho, sin_rho of
+// rho < 90 deg): every n has max(n.u_a, n.u_b) >= n.q, q = (u_a + u_b) / 2, and on the cap
+// n.q >= |q| cos(angle(c, q) + rho) = (c.q) cos rho - |c x q| sin rho while angle(c, q) +
+// rho <= 180 deg, which c.q >= 0 ensures; -2 (no bound) otherwise. So D < arccos of it on
+// the whole cap, u_a and u_b being link vertices.
+inline double pair_cap_cosine(const Vec3& c, double cos_rho, double sin_rho, const Vec3& u_a, const Vec3& u_b) {
+  const Vec3 q = 0.5 * (u_a + u_b);
+  const double cq = dot(c, q);
+  return cq >= 0.0 ? cq * cos_rho - norm(cross(c, q)) * sin_rho : -2.0;
+}
 
 struct SubdivisionStats {
   int cells = 0;
@@ -96,6 +109,13 @@ class SiteSubdivision {
   void refine_roots();
   void refine(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
               int parent_sites, int stable_levels);
+  // Whether the pair bound (pair_cap_cosine) puts D below the threshold on the whole cap
+  // B(c, rho) for some pair of link vertices. For a nearly antipodal pair q is short and
+  // the bound nearly flat, where D(c) + rho is not: it drops the cells along the ridges
+  // of near-ties (straight ridges, sliver fans) that the Lipschitz bound keeps down to
+  // the size of the offsets between the sites. Pairs are taken among the ends of the
+  // cell's kept arcs [arcs_begin, arcs_end) within reach (c.u >= cos_reach).
+  bool pair_bound_below(const Vec3& c, double rho, double cos_reach, int arcs_begin, int arcs_end);
   void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end);
   void offer(const Leaf& leaf, const Vec3& n);
   void offer_anywhere(const Vec3& n);
@@ -115,7 +135,10 @@ class SiteSubdivision {
   std::vector<Vec3> lune1_, lune2_, merged_lune1_, merged_lune2_;
   std::vector<int> arena_;  // active fan arcs and faces of the cells on the current path
   std::vector<double> arc_cos_;  // scratch: cosine of each fan arc's distance at the cell centre
-  std::vector<int> point_stamp_, arc_stamp_;
+  std::vector<int> point_stamp_, arc_stamp_, vertex_stamp_;
+  // Scratch of pair_bound_below: (c.u_j, j) of the link vertices within reach.
+  std::vector<std::pair<double, int>> near_;
+  int pair_tries_ = 0, pair_drops_ = 0;
   int stamp_ = 0;
   std::vector<int> leaf_points_, leaf_arcs_;  // scratch of the cell being classified
   std::vector<Leaf> leaves_;

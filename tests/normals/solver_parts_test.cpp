@@ -125,6 +125,33 @@ TEST(PlateauEnvelope, PeaksAsHighAsAllPairwiseCrossings) {
   EXPECT_GT(n, 100);
 }
 
+// The pair bound of the subdivision holds on every sampled direction of the cap, rim
+// included, for random and for nearly antipodal pairs of link directions.
+TEST(SiteSubdivision, PairBoundHoldsOnEverySampledDirectionOfTheCap) {
+  std::mt19937 rng(31);
+  std::normal_distribution<double> nd;
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  auto random_unit = [&]() { return normalized(Vec3{nd(rng), nd(rng), nd(rng)}); };
+  int bounded = 0;
+  for (int t = 0; t < 4000; ++t) {
+    const Vec3 c = random_unit(), a = random_unit();
+    const Vec3 b = t % 2 == 0 ? random_unit() : normalized(-a + 1e-3 * u01(rng) * random_unit());
+    const double rho = t % 4 < 2 ? 0.5 * u01(rng) : 1e-3 * u01(rng);
+    const double bound = detail::pair_cap_cosine(c, std::cos(rho), std::sin(rho), a, b);
+    if (bound == -2.0) continue;
+    ++bounded;
+    Vec3 e1, e2;
+    detail::orthonormal_complement(c, &e1, &e2);
+    for (int s = 0; s < 64; ++s) {
+      // Points of the cap, its rim included.
+      const double r = s < 32 ? rho : rho * std::sqrt(u01(rng)), phi = 2.0 * M_PI * u01(rng);
+      const Vec3 n = std::cos(r) * c + std::sin(r) * (std::cos(phi) * e1 + std::sin(phi) * e2);
+      ASSERT_GE(std::max(dot(n, a), dot(n, b)), bound - 1e-15) << "pair " << t << " sample " << s;
+    }
+  }
+  EXPECT_GT(bounded, 1500);
+}
+
 // The generator screen keeps an arc only on its fluid side: a direction at its pole
 // passes, its antipode does not, nor a pair of arcs whose poles are antipodal.
 TEST(ArcReachScreen, KeepsArcGeneratorsOnTheirFluidSideOnly) {
