@@ -144,7 +144,7 @@ class CandidatePool {
 // from sites nearest to it: a point site w there has angle(x, w) = D(x), an arc site c
 // has its foot inside and arcsin|x.g_c| = D(x). A maximiser is fluid, and a fluid
 // direction whose nearest feature is an arc's interior lies on the side of its normal,
-// x.g_c > 0 (docs/normals.md, "Fluid side"). A candidate that can still become a
+// x.g_c > 0 (docs/normals.md, "Which side is fluid"). A candidate that can still become a
 // maximiser has D(x) >= thr (the pool's threshold, which only rises), so
 //   x.w <= cos(thr) |x|  and  x.g_c >= sin(thr) |x|:
 // x lies within 90 deg - thr of the pole g_c (not of its antipode, which holds only

@@ -72,6 +72,11 @@ constexpr double kMaxLensRadius = 0.5;
 // dot products.
 constexpr double kLensCapMargin = 1e-12;
 
+// Largest link whose cap is enumerated when Wolfe's iteration leaves it uncertified: the
+// enumeration grows as k^4 and, on the CAD-like fans of valence 60, costs as much as it
+// saves.
+constexpr int kMaxCapEnumeration = 60;
+
 enum class Strategy { kEnumeration, kPrunedEnumeration, kSubdivision };
 
 // Winding number of the link around n (every triangle seen from n): one turn means a
@@ -151,16 +156,19 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
   cap_tol.min_visibility = kLensCapMargin;
   MostVisibleResult cap;
   // Near-flat CAD fans whose link vertices fit in a hemisphere by a hair often leave
-  // Wolfe's iteration uncertified: the exact enumeration then gives the cap, which keeps
-  // the search in the lens instead of the whole sphere (one measured sliver fan: 8162
-  // cells -> 189).
+  // Wolfe's iteration uncertified: up to kMaxCapEnumeration link vertices the exact
+  // enumeration then gives the cap, which keeps the search in the lens instead of the
+  // whole sphere (on one sliver fan, 189 cells against 8162).
   const WolfeOutcome outcome = wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap);
-  if (outcome == WolfeOutcome::kUncertified) cap = most_visible_normal(g.dirs.data(), g.n_faces(), cap_tol);
-  const bool capped = outcome != WolfeOutcome::kNoVisibleDirection && cap.feasible;
+  bool capped = outcome == WolfeOutcome::kCertified && cap.feasible;
+  if (outcome == WolfeOutcome::kUncertified && g.n_faces() <= kMaxCapEnumeration) {
+    cap = most_visible_by_enumeration(g.dirs.data(), g.n_faces(), cap_tol);
+    capped = cap.feasible;
+  }
   double radius = -1.0;
   if (capped) {
     // The antipode is a lower bound only: when it is the optimum its generators build it
-    // exactly, and Wolfe's rounding must not enter the tie-break.
+    // exactly, and the rounding of the cap must not enter the tie-break.
     double d;
     bool fluid;
     if (pool->evaluate(-cap.normal, -std::numeric_limits<double>::infinity(), &d, &fluid) && fluid &&

@@ -19,9 +19,10 @@ namespace detail {
 void enumerate_unconstrained(const FanSites& s, bool screen, CandidatePool* pool);
 
 // The same with, in addition, the arc-reach screen (ArcReachScreen in candidate_pool.h):
-// candidates whose arc generators would lie nearer than the running threshold are not
-// built. Only candidates that are not critical points of D are lost (their arc is not
-// nearest), so every maximiser that is a critical point is still found.
+// candidates whose arc generators would lie nearer than the running threshold, or on
+// the solid side of their arc, are not built. Only candidates that cannot be fluid
+// maximisers are lost (solid-side ones, and those that are not critical points of D, their
+// arc not being nearest), so every maximiser that is a critical point is still found.
 void enumerate_screened(const FanSites& s, CandidatePool* pool);
 
 // Every candidate on the constraint circles n.f_i = V_min (the pool is put in its

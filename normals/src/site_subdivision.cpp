@@ -46,9 +46,9 @@ constexpr double kTrigMargin = 1e-15;
 constexpr double kPairMargin = 1e-12;
 
 // The pair bound stops being tried after kPairTrials cells if it dropped fewer than one
-// in kPairRate of them.
+// in kPairTriesPerDrop of them.
 constexpr int kPairTrials = 64;
-constexpr int kPairRate = 16;
+constexpr int kPairTriesPerDrop = 16;
 
 // Upper bound of the angle between unit vectors at chord t = |a - b|: the angle is
 // 2 asin(t / 2) = t + t^3 / 24 + ..., below t + t^3 / 12 for t <= 1; the relative
@@ -262,11 +262,12 @@ bool SiteSubdivision::pair_bound_below(const Vec3& c, double rho, double cos_rea
   const double thr = pool_.threshold();
   if (!(thr > 0.0) || thr > M_PI || rho >= 0.5 * M_PI) return false;
   // Where no near-antipodal pair shapes the optimum the bound never prunes and only costs
-  // its pairs: after kPairTrials cells with less than one drop in kPairRate, it is no
-  // longer tried in this solve (a pure cost decision: dropping fewer cells is exact).
-  if (pair_tries_ >= kPairTrials && pair_drops_ * kPairRate < pair_tries_) return false;
+  // its pairs: after kPairTrials cells with less than one drop in kPairTriesPerDrop, it is
+  // no longer tried in this solve (a pure cost decision: dropping fewer cells is exact).
+  if (pair_tries_ >= kPairTrials && pair_drops_ * kPairTriesPerDrop < pair_tries_) return false;
   ++pair_tries_;
-  // The ends of the cell's arcs that can be nearest in it (the others make looser pairs).
+  // The ends of the cell's arcs that can be nearest in it (a cost choice: any pair of link
+  // vertices gives a valid bound).
   ++stamp_;
   near_.clear();
   for (int t = arcs_begin; t < arcs_end; ++t)

@@ -50,8 +50,8 @@ namespace detail {
 // A lower bound of max(n.u_a, n.u_b) over the cap B(c, rho) (unit c; cos_rho, sin_rho of
 // rho < 90 deg): every n has max(n.u_a, n.u_b) >= n.q, q = (u_a + u_b) / 2, and on the cap
 // n.q >= |q| cos(angle(c, q) + rho) = (c.q) cos rho - |c x q| sin rho while angle(c, q) +
-// rho <= 180 deg, which c.q >= 0 ensures; -2 (no bound) otherwise. So D < arccos of it on
-// the whole cap, u_a and u_b being link vertices.
+// rho <= 180 deg, which c.q >= 0 ensures; -2 (no bound) otherwise. So D <= arccos of it
+// on the whole cap, u_a and u_b being link vertices.
 inline double pair_cap_cosine(const Vec3& c, double cos_rho, double sin_rho, const Vec3& u_a, const Vec3& u_b) {
   const Vec3 q = 0.5 * (u_a + u_b);
   const double cq = dot(c, q);
@@ -113,8 +113,9 @@ class SiteSubdivision {
   // B(c, rho) for some pair of link vertices. For a nearly antipodal pair q is short and
   // the bound nearly flat, where D(c) + rho is not: it drops the cells along the ridges
   // of near-ties (straight ridges, sliver fans) that the Lipschitz bound keeps down to
-  // the size of the offsets between the sites. Pairs are taken among the ends of the
-  // cell's kept arcs [arcs_begin, arcs_end) within reach (c.u >= cos_reach).
+  // the size of the offsets between the sites. Any pair gives a valid bound; as a matter
+  // of cost, pairs are taken among the ends of the cell's kept arcs [arcs_begin,
+  // arcs_end) within reach (c.u >= cos_reach).
   bool pair_bound_below(const Vec3& c, double rho, double cos_reach, int arcs_begin, int arcs_end);
   void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end);
   void offer(const Leaf& leaf, const Vec3& n);

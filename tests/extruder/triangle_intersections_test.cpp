@@ -81,8 +81,6 @@ TEST(TriangleIntersections, PushingAVertexThroughTheSphereIsFound) {
   EXPECT_FALSE(restricted.empty());
 }
 
-
-// The BVH-based search must find exactly the pairs a brute-force double loop finds.
 // Two triangles sharing one vertex meet beyond it iff an edge opposite the shared vertex
 // meets the other triangle: the plane tests that settle most pairs first must give the
 // same verdict, also on grid points where points are coplanar or collinear (triangles of
@@ -117,6 +115,7 @@ TEST(TriangleIntersections, ZeroAreaNeighbourOffThePlaneMeetsOnlyAtTheSharedVert
   EXPECT_FALSE(soup_triangles_intersect(p, {0, 3, 4}, {0, 1, 2}));
 }
 
+// The BVH-based search must find exactly the pairs a brute-force double loop finds.
 TEST(TriangleIntersections, TreeSearchMatchesBruteForceOnRandomTriangles) {
   testing::Lcg lcg(12345);
   auto rnd = [&]() { return lcg.uniform(); };

@@ -35,11 +35,12 @@
 //      antipode's own D is a lower bound (it never competes in the tie-break).
 //   b. Otherwise, fans of at most 12 sites run the enumeration with exact screens:
 //      a generator of a candidate that can still win is at D >= threshold from it, so an
-//      arc generator's pole lies within 90 deg - threshold, a point generator at least
-//      the threshold away (candidate_pool.h, ArcReachScreen).
+//      arc generator's pole lies within 90 deg - threshold of it (on the fluid side), a
+//      point generator at least the threshold away (candidate_pool.h, ArcReachScreen).
 //   c. Larger fans: a cube-map quadtree of cells, each keeping the sites and faces that
 //      can be nearest or lowest in it (D and V are 1-Lipschitz), dropped when its bound
-//      D(c) + rho is below the running threshold or it lies off the fluid side; each leaf
+//      D(c) + rho, or the bound of a pair of link vertices, is below the running
+//      threshold, or when it lies off the fluid side; each leaf
 //      enumerates the subsets of its few sites once (site_subdivision.h, with the proof
 //      that every maximiser that is a critical point is built).
 //   d. Plateau peaks from the lower envelope of V along the circle; the constraint
