@@ -211,7 +211,9 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   for (int t = faces_begin; t < faces_end; ++t)
     if (dot(c, g_.face_normals[arena_[t]]) <= v_reach) arena_.push_back(arena_[t]);
   const int own_end = static_cast<int>(arena_.size());
-  if (pair_bound_below(c, rho, cos_reach, own_arcs, own_faces)) {
+  // The pair bound is for ridges of near-ties, where many sites can be nearest; tried on
+  // the children of cells with more than kSmallLeaf of them, it costs nothing elsewhere.
+  if (parent_sites > kSmallLeaf && pair_bound_below(c, rho, cos_reach, own_arcs, own_faces)) {
     arena_.resize(own_arcs);
     return;
   }
