@@ -97,7 +97,6 @@ SiteSubdivision::SiteSubdivision(const FanSites& sites, CandidatePool* pool)
   }
   arc_cos_.resize(k_);
   n_points_ = static_cast<int>(s_.points.size());
-  point_stamp_.assign(s_.points.size(), 0);
   vertex_stamp_.assign(g_.dirs.size(), 0);
   arc_stamp_.assign(na, 0);
 }
@@ -211,38 +210,12 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   for (int t = faces_begin; t < faces_end; ++t)
     if (dot(c, g_.face_normals[arena_[t]]) <= v_reach) arena_.push_back(arena_[t]);
   const int own_end = static_cast<int>(arena_.size());
+  gather_sites(c, rho, cos_reach, own_arcs, own_faces);
   // The pair bound is for ridges of near-ties, where many sites can be nearest; tried on
   // the children of cells with more than kSmallLeaf of them, it costs nothing elsewhere.
-  if (parent_sites > kSmallLeaf && pair_bound_below(c, rho, cos_reach, own_arcs, own_faces)) {
+  if (parent_sites > kSmallLeaf && pair_bound_below(c, rho)) {
     arena_.resize(own_arcs);
     return;
-  }
-
-  // The sites that can be nearest in the cell: reflex ends of the kept arcs within
-  // reach, and merged arcs whose foot-inside lune meets the cap. A generator s of a
-  // candidate that can still become a maximiser has d_s = D >= thr there, and an arc's
-  // interior is at arcsin|n.g| <= arcsin(|c.g| + rho) in the cell: arcs whose circle
-  // passes nearer cannot generate one (none can above 90 degrees).
-  ++stamp_;
-  leaf_points_.clear();
-  leaf_arcs_.clear();
-  const double lune_reach = -sin_bound(rho + kBoundMargin);
-  const double thr = pool_.threshold() - kBoundMargin;
-  const double arc_reach = thr <= 0.0 ? -1.0 : (thr > 0.5 * M_PI ? 3.0 : std::sin(thr) - rho - kBoundMargin);
-  for (int t = own_arcs; t < own_faces; ++t) {
-    const int i = arena_[t];
-    for (int j : {i, (i + 1) % k_}) {
-      const int p = s_.point_of_vertex[j];
-      if (p < 0 || point_stamp_[p] == stamp_) continue;
-      point_stamp_[p] = stamp_;
-      if (dot(c, g_.dirs[j]) >= cos_reach) leaf_points_.push_back(p);
-    }
-    const int m = s_.arc_of_face[i];
-    if (arc_stamp_[m] == stamp_) continue;
-    arc_stamp_[m] = stamp_;
-    if (dot(c, merged_lune1_[m]) >= lune_reach && dot(c, merged_lune2_[m]) >= lune_reach &&
-        std::fabs(dot(c, s_.arcs[m].g)) >= arc_reach)
-      leaf_arcs_.push_back(m);
   }
   const int n_sites = static_cast<int>(leaf_points_.size() + leaf_arcs_.size());
   const int stable = n_sites == parent_sites ? stable_levels + 1 : 0;
@@ -260,7 +233,40 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   arena_.resize(own_arcs);
 }
 
-bool SiteSubdivision::pair_bound_below(const Vec3& c, double rho, double cos_reach, int arcs_begin, int arcs_end) {
+// The sites that can be nearest in a cell: reflex ends of the kept arcs within reach,
+// and merged arcs whose foot-inside lune meets the cap. A generator s of a candidate that
+// can still become a maximiser has d_s = D >= thr there, and an arc's interior is at
+// arcsin|n.g| <= arcsin(|c.g| + rho) in the cell: arcs whose circle passes nearer cannot
+// generate one (none can above 90 degrees). The ends within reach, reflex or not, are
+// kept in near_ for the pair bound.
+void SiteSubdivision::gather_sites(const Vec3& c, double rho, double cos_reach, int arcs_begin, int arcs_end) {
+  ++stamp_;
+  near_.clear();
+  leaf_points_.clear();
+  leaf_arcs_.clear();
+  const double lune_reach = -sin_bound(rho + kBoundMargin);
+  const double thr = pool_.threshold() - kBoundMargin;
+  const double arc_reach = thr <= 0.0 ? -1.0 : (thr > 0.5 * M_PI ? 3.0 : std::sin(thr) - rho - kBoundMargin);
+  for (int t = arcs_begin; t < arcs_end; ++t) {
+    const int i = arena_[t];
+    for (int j : {i, (i + 1) % k_}) {
+      if (vertex_stamp_[j] == stamp_) continue;
+      vertex_stamp_[j] = stamp_;
+      const double cu = dot(c, g_.dirs[j]);
+      if (!(cu >= cos_reach)) continue;
+      near_.push_back({cu, j});
+      if (s_.point_of_vertex[j] >= 0) leaf_points_.push_back(s_.point_of_vertex[j]);
+    }
+    const int m = s_.arc_of_face[i];
+    if (arc_stamp_[m] == stamp_) continue;
+    arc_stamp_[m] = stamp_;
+    if (dot(c, merged_lune1_[m]) >= lune_reach && dot(c, merged_lune2_[m]) >= lune_reach &&
+        std::fabs(dot(c, s_.arcs[m].g)) >= arc_reach)
+      leaf_arcs_.push_back(m);
+  }
+}
+
+bool SiteSubdivision::pair_bound_below(const Vec3& c, double rho) {
   const double thr = pool_.threshold();
   if (!(thr > 0.0) || thr > M_PI || rho >= 0.5 * M_PI) return false;
   // Where no near-antipodal pair shapes the optimum the bound never prunes and only costs
@@ -268,17 +274,6 @@ bool SiteSubdivision::pair_bound_below(const Vec3& c, double rho, double cos_rea
   // no longer tried in this solve (a pure cost decision: dropping fewer cells is exact).
   if (pair_tries_ >= kPairTrials && pair_drops_ * kPairTriesPerDrop < pair_tries_) return false;
   ++pair_tries_;
-  // The ends of the cell's arcs that can be nearest in it (a cost choice: any pair of link
-  // vertices gives a valid bound).
-  ++stamp_;
-  near_.clear();
-  for (int t = arcs_begin; t < arcs_end; ++t)
-    for (int j : {arena_[t], (arena_[t] + 1) % k_}) {
-      if (vertex_stamp_[j] == stamp_) continue;
-      vertex_stamp_[j] = stamp_;
-      const double cu = dot(c, g_.dirs[j]);
-      if (cu >= cos_reach) near_.push_back({cu, j});
-    }
   const double cr = std::cos(rho), sr = std::sin(rho);
   const double level = std::cos(thr) + kPairMargin;
   // The bound's cosine is at most c.q cos(rho) = (c.u_a + c.u_b) cos(rho) / 2: with the

@@ -109,14 +109,17 @@ class SiteSubdivision {
   void refine_roots();
   void refine(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
               int parent_sites, int stable_levels);
+  // Fills leaf_points_, leaf_arcs_ and near_ for the cell B(c, rho) from its kept arcs
+  // arena_[arcs_begin, arcs_end), the ends within cos_reach (c.u >= cos_reach).
+  void gather_sites(const Vec3& c, double rho, double cos_reach, int arcs_begin, int arcs_end);
   // Whether the pair bound (pair_cap_cosine) puts D below the threshold on the whole cap
   // B(c, rho) for some pair of link vertices. For a nearly antipodal pair q is short and
   // the bound nearly flat, where D(c) + rho is not: it drops the cells along the ridges
   // of near-ties (straight ridges, sliver fans) that the Lipschitz bound keeps down to
   // the size of the offsets between the sites. Any pair gives a valid bound; as a matter
-  // of cost, pairs are taken among the ends of the cell's kept arcs [arcs_begin,
-  // arcs_end) within reach (c.u >= cos_reach).
-  bool pair_bound_below(const Vec3& c, double rho, double cos_reach, int arcs_begin, int arcs_end);
+  // of cost, pairs are taken among the cell's vertices within reach (near_, which it
+  // reorders).
+  bool pair_bound_below(const Vec3& c, double rho);
   void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end);
   void offer(const Leaf& leaf, const Vec3& n);
   void offer_anywhere(const Vec3& n);
@@ -136,8 +139,8 @@ class SiteSubdivision {
   std::vector<Vec3> lune1_, lune2_, merged_lune1_, merged_lune2_;
   std::vector<int> arena_;  // active fan arcs and faces of the cells on the current path
   std::vector<double> arc_cos_;  // scratch: cosine of each fan arc's distance at the cell centre
-  std::vector<int> point_stamp_, arc_stamp_, vertex_stamp_;
-  // Scratch of pair_bound_below: (c.u_j, j) of the link vertices within reach.
+  std::vector<int> arc_stamp_, vertex_stamp_;
+  // Scratch of the cell being classified: (c.u_j, j) of the link vertices within reach.
   std::vector<std::pair<double, int>> near_;
   int pair_tries_ = 0, pair_drops_ = 0;
   int stamp_ = 0;
