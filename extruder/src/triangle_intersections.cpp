@@ -82,14 +82,17 @@ bool triangles_intersect(const Vec3* s, const Vec3* t) {
   // A triangle strictly on one side of the other's plane cannot meet it. This settles
   // almost every pair of nearby front triangles with 3 or 6 orientations instead of up
   // to 30 in the edge tests below, which decide the remaining pairs.
-  int side[3];
-  detail::orient3d_sides(t[0], t[1], t[2], s, 3, side);
-  if (strictly_one_side(side[0], side[1], side[2])) return false;
-  detail::orient3d_sides(s[0], s[1], s[2], t, 3, side);
-  if (strictly_one_side(side[0], side[1], side[2])) return false;
+  // The edge tests reuse these sides of the edges' ends.
+  int s_side[3], t_side[3];
+  detail::orient3d_sides(t[0], t[1], t[2], s, 3, s_side);
+  if (strictly_one_side(s_side[0], s_side[1], s_side[2])) return false;
+  detail::orient3d_sides(s[0], s[1], s[2], t, 3, t_side);
+  if (strictly_one_side(t_side[0], t_side[1], t_side[2])) return false;
   for (int k = 0; k < 3; ++k) {
-    if (segment_intersects_triangle(s[k], s[(k + 1) % 3], t[0], t[1], t[2])) return true;
-    if (segment_intersects_triangle(t[k], t[(k + 1) % 3], s[0], s[1], s[2])) return true;
+    const int l = (k + 1) % 3;
+    const int s_ends[2] = {s_side[k], s_side[l]}, t_ends[2] = {t_side[k], t_side[l]};
+    if (segment_meets_triangle(s[k], s[l], t[0], t[1], t[2], s_ends)) return true;
+    if (segment_meets_triangle(t[k], t[l], s[0], s[1], s[2], t_ends)) return true;
   }
   return false;
 }
