@@ -27,33 +27,40 @@ namespace {
 
 using testing_fans::Shape;
 
+// visit(geometry, label) for every non-degenerate fan of `per_shape` draws of each
+// random shape, all from one stream.
+template <class Visit>
+void for_each_random_fan(std::mt19937& rng, int per_shape, Visit&& visit) {
+  for (Shape shape : {Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kSliver, Shape::kWild})
+    for (int t = 0; t < per_shape; ++t) {
+      const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, shape));
+      if (!g.any_degenerate) visit(g, std::string(testing_fans::shape_name(shape)) + " " + std::to_string(t));
+    }
+}
+
 // The whole-sphere subdivision alone (the default solver sends small fans to the
 // screened enumeration instead) reaches the enumeration's optimum D.
 TEST(SiteSubdivision, ReachesTheEnumerationOptimumOnAnyFan) {
   std::mt19937 rng(99);
   int n = 0;
-  for (Shape shape : {Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kSliver, Shape::kWild})
-    for (int t = 0; t < 150; ++t) {
-      const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, shape));
-      if (g.any_degenerate) continue;
-      const MostVisibleResult mv = most_visible_normal(g.face_normals);
-      if (!mv.feasible) continue;
-      for (bool constrained : {true, false}) {
-        detail::CandidatePool pool(g, default_tolerances(), constrained, 0.5 * mv.visibility);
-        detail::FanSites sites;
-        detail::build_fan_sites(g, default_tolerances(), &sites);
-        if (sites.points.empty()) continue;
-        pool.consider(mv.normal);
-        detail::SiteSubdivision subdivision(sites, &pool);
-        subdivision.unconstrained_candidates();
-        if (pool.limited()) subdivision.constraint_circles();
-        const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), constrained);
-        ++n;
-        EXPECT_NEAR(pool.best_constrained(), oracle.normality, 1e-12)
-            << testing_fans::shape_name(shape) << " " << t << (constrained ? " constrained" : " free");
-        EXPECT_GE(subdivision.stats().cells, 6);  // every cube face visited
-      }
+  for_each_random_fan(rng, 150, [&](const FanGeometry& g, const std::string& label) {
+    const MostVisibleResult mv = most_visible_normal(g.face_normals);
+    if (!mv.feasible) return;
+    for (bool constrained : {true, false}) {
+      detail::CandidatePool pool(g, default_tolerances(), constrained, 0.5 * mv.visibility);
+      detail::FanSites sites;
+      detail::build_fan_sites(g, default_tolerances(), &sites);
+      if (sites.points.empty()) continue;
+      pool.consider(mv.normal);
+      detail::SiteSubdivision subdivision(sites, &pool);
+      subdivision.unconstrained_candidates();
+      if (pool.limited()) subdivision.constraint_circles();
+      const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), constrained);
+      ++n;
+      EXPECT_NEAR(pool.best_constrained(), oracle.normality, 1e-12) << label << (constrained ? " constrained" : " free");
+      EXPECT_GE(subdivision.stats().cells, 6);  // every cube face visited
     }
+  });
   EXPECT_GT(n, 900);
 }
 
@@ -175,21 +182,18 @@ TEST(ArcReachScreen, KeepsArcGeneratorsOnTheirFluidSideOnly) {
 TEST(ArcReachScreen, EveryArcGeneratorOfAMaximiserHasItOnItsNormalSide) {
   std::mt19937 rng(515);
   int generators = 0;
-  for (Shape shape : {Shape::kConvex, Shape::kConcave, Shape::kSaddle, Shape::kSliver, Shape::kWild})
-    for (int t = 0; t < 60; ++t) {
-      const FanGeometry g = testing_fans::geometry(testing_fans::random_fan(rng, shape));
-      if (g.any_degenerate) continue;
-      for (bool constrained : {true, false})
-        for (const detail::Maximizer& m : detail::most_normal_maximizers(g, default_tolerances(), constrained, false))
-          for (int i = 0; i < g.n_faces(); ++i) {
-            const Vec3& f = g.face_normals[i];
-            const Vec3 foot = m.n - dot(m.n, f) * f;
-            const bool inside = dot(cross(g.arc_start(i), foot), f) > 0.0 && dot(cross(foot, g.arc_end(i)), f) > 0.0;
-            if (!inside || std::fabs(std::asin(std::min(1.0, std::fabs(dot(m.n, f)))) - m.d) > 1e-9) continue;
-            ++generators;
-            EXPECT_NEAR(dot(m.n, f), std::sin(m.d), 1e-9) << testing_fans::shape_name(shape) << " " << t << " arc " << i;
-          }
-    }
+  for_each_random_fan(rng, 60, [&](const FanGeometry& g, const std::string& label) {
+    for (bool constrained : {true, false})
+      for (const detail::Maximizer& m : detail::most_normal_maximizers(g, default_tolerances(), constrained, false))
+        for (int i = 0; i < g.n_faces(); ++i) {
+          const Vec3& f = g.face_normals[i];
+          const Vec3 foot = m.n - dot(m.n, f) * f;
+          const bool inside = dot(cross(g.arc_start(i), foot), f) > 0.0 && dot(cross(foot, g.arc_end(i)), f) > 0.0;
+          if (!inside || std::fabs(std::asin(std::min(1.0, std::fabs(dot(m.n, f)))) - m.d) > 1e-9) continue;
+          ++generators;
+          EXPECT_NEAR(dot(m.n, f), std::sin(m.d), 1e-9) << label << " arc " << i;
+        }
+  });
   EXPECT_GT(generators, 300);
 }
 
