@@ -110,11 +110,11 @@ struct Sectors {
   std::vector<int> column;           // per sector: its column
 };
 
-Sectors sectors_of(const VertexFan& fan, int v, const std::set<EdgeKey>& ridge_set) {
+Sectors sectors_of(const VertexFan& fan, int v, const std::map<EdgeKey, int>& ridge_index) {
   const int k = static_cast<int>(fan.triangles.size());
   std::vector<int> split;  // fan triangle i whose leading edge (v, ring[i]) is a ridge
   for (int i = 0; i < k; ++i)
-    if (ridge_set.count(edge_key(v, fan.ring[i]))) split.push_back(i);
+    if (ridge_index.count(edge_key(v, fan.ring[i]))) split.push_back(i);
   Sectors s;
   s.first = split;
   s.sector_of.assign(k, -1);
@@ -167,7 +167,7 @@ ColumnLayout single_column_layout(const TriSurface& wall) {
 namespace {
 
 // The layout of one extrusion, built in the order of the header's description: ridges,
-// the columns of single and fan points, the slices per ridge network, then the front's
+// the columns of single and fan points, the slices per ridge chain, then the front's
 // wall triangles, strips and corner patches.
 class LayoutBuilder {
  public:
@@ -187,8 +187,9 @@ class LayoutBuilder {
       while (drop_adjacent_ridge_ends(wall_, ridges_, is_fan_, &no_fan));
     }
     degree_.assign(nv_, 0);
-    for (const Ridge& r : ridges_) {
-      ridge_set_.insert(edge_key(r.a, r.b));
+    for (int i = 0; i < static_cast<int>(ridges_.size()); ++i) {
+      const Ridge& r = ridges_[i];
+      ridge_index_[edge_key(r.a, r.b)] = i;
       ++degree_[r.a];
       ++degree_[r.b];
       out_.n_ridge_ends += is_fan_[r.a] != is_fan_[r.b];
@@ -209,7 +210,7 @@ class LayoutBuilder {
       }
       ++out_.n_fan_points;
       const VertexFan& fan = fans_.fans[v];
-      sectors_[v] = sectors_of(fan, v, ridge_set_);
+      sectors_[v] = sectors_of(fan, v, ridge_index_);
       for (std::size_t s = 0; s < sectors_[v].first.size(); ++s) {
         const Vec3 n = sector_normal(wall_, fan, v, sectors_[v], static_cast<int>(s), method_);
         sector_dir_[v].push_back(n);
@@ -218,18 +219,34 @@ class LayoutBuilder {
     }
   }
 
-  // Slices per ridge network: m uniform over it, the largest any of its fans needs.
+  // Slices per ridge chain: the ridge edges joined through fan points on exactly two
+  // of them (both edges then share the point's one fan, so their slices must match);
+  // a corner or a ridge end separates chains, whose fans there are distinct. m is the
+  // largest any fan of the chain needs, so a 90-degree rim keeps its 3 slices beside a
+  // 165-degree trailing edge's 6.
   void count_slices() {
-    chains_ = UnionFind(nv_);
-    for (const Ridge& r : ridges_) chains_.unite(r.a, r.b);
+    const int nr = static_cast<int>(ridges_.size());
+    chains_ = UnionFind(nr);
+    std::vector<int> first_ridge_at(nv_, -1);
+    for (int i = 0; i < nr; ++i)
+      for (int x : {ridges_[i].a, ridges_[i].b}) {
+        if (!is_fan_[x] || degree_[x] != 2) continue;
+        if (first_ridge_at[x] < 0)
+          first_ridge_at[x] = i;
+        else
+          chains_.unite(first_ridge_at[x], i);
+      }
     const double max_sector = std::max(p_.max_sector_deg, 1.0) * kDegToRad;
-    for (const Ridge& r : ridges_)
+    for (int i = 0; i < nr; ++i) {
+      const Ridge& r = ridges_[i];
+      int& m = chain_m_[chains_.find(i)];
+      m = std::max(m, 1);
       for (int x : {r.a, r.b}) {
         if (!is_fan_[x]) continue;
         const double gap = angle_between(sector_dir_[x][sector_at(x, r.t0)], sector_dir_[x][sector_at(x, r.t1)]);
-        int& m = chain_m_[chains_.find(x)];
-        m = std::max({m, 1, static_cast<int>(std::ceil(gap / max_sector - 1e-9))});
+        m = std::max(m, static_cast<int>(std::ceil(gap / max_sector - 1e-9)));
       }
+    }
   }
 
   // Front: wall triangles on their sector columns; a corner at a ridge end splits.
@@ -250,8 +267,9 @@ class LayoutBuilder {
   // (one side a single column P) the quad is the triangle (P, X, Y), X Y consecutive in
   // the fan.
   void add_strips() {
-    for (const Ridge& r : ridges_) {
-      const int m = chain_m_[chains_.find(is_fan_[r.a] ? r.a : r.b)];
+    for (int i = 0; i < static_cast<int>(ridges_.size()); ++i) {
+      const Ridge& r = ridges_[i];
+      const int m = slices_of_ridge(i);
       const std::vector<int> la = fan_across(r.a, r.t0, r.t1, m);
       const std::vector<int> lb = fan_across(r.b, r.t0, r.t1, m);
       for (int j = 0; j < m; ++j) {
@@ -284,11 +302,11 @@ class LayoutBuilder {
       std::vector<int> loop;
       const VertexFan& fan = fans_.fans[v];
       const int k = static_cast<int>(fan.triangles.size());
-      const int m = chain_m_[chains_.find(v)];
       for (int s = 0; s < n_sectors; ++s) {
         // The ridge between sector s and the next: the leading edge of the next one's
         // first triangle, between that triangle and the one before it (sector s).
         const int i = sectors_[v].first[(s + 1) % n_sectors];
+        const int m = slices_of_ridge(ridge_index_.at(edge_key(v, fan.ring[i])));
         const std::vector<int> l = fan_across(v, fan.triangles[(i + k - 1) % k], fan.triangles[i], m);
         loop.insert(loop.end(), l.begin(), l.end() - 1);
       }
@@ -321,6 +339,8 @@ class LayoutBuilder {
     out_.wall_face.push_back(wall_face);
     out_.element_of_triangle.push_back(static_cast<int>(out_.elements.size()) - 1);
   }
+
+  int slices_of_ridge(int ridge) { return chain_m_.at(chains_.find(ridge)); }
 
   // The sector of triangle f at fan point v.
   int sector_at(int v, int f) const {
@@ -359,13 +379,13 @@ class LayoutBuilder {
   const int nv_;
   ColumnLayout out_;
   std::vector<Ridge> ridges_;
-  std::set<EdgeKey> ridge_set_;
+  std::map<EdgeKey, int> ridge_index_;  // ridge edge -> index in ridges_
   std::vector<char> is_fan_;
   std::vector<int> degree_, plain_column_;
   std::vector<Sectors> sectors_;
   std::vector<std::vector<Vec3>> sector_dir_;
-  UnionFind chains_{0};
-  std::map<int, int> chain_m_;
+  UnionFind chains_{0};                       // of ridge indices
+  std::map<int, int> chain_m_;                // per chain root: its slices
   std::map<std::array<int, 3>, std::vector<int>> fan_list_;
   std::set<std::pair<int, int>> quad_edges_;  // directed column edges of the strips
 };

@@ -141,8 +141,7 @@ TEST(FanLayout, SharpTrailingEdgeGetsSubNormalsAtMostMaxSectorApart) {
   const double apex = 15.0;
   const TriSurface w = wedge_prism(apex, 4.0, 2.0, 4);
   const ColumnLayout l = layout_of(w);
-  // The apex edge turns by 165 degrees: ceil(165 / 30) = 6 slices of 27.5 degrees; the
-  // whole prism is one ridge network, so every fan has 6 slices.
+  // The apex edge turns by 165 degrees: ceil(165 / 30) = 6 slices of 27.5 degrees.
   const auto by_point = columns_by_point(l);
   int n_apex = 0;
   for (const auto& [p, cols] : by_point) {
@@ -166,6 +165,38 @@ TEST(FanLayout, SharpTrailingEdgeGetsSubNormalsAtMostMaxSectorApart) {
     EXPECT_LE(a, 30.0 + 1e-9);
   }
   EXPECT_EQ(n_checked, 4 * 6);
+  expect_closed_and_oriented(l.front);
+}
+
+TEST(FanLayout, EachRidgeChainGetsTheSlicesItsOwnTurnNeeds) {
+  // The wedge prism's ridges: the apex edge turns by 165 degrees (6 slices of at most
+  // 30), the two back edges by 97.5 (4) and the end caps' rims by 90 (3). The apex and
+  // back lines are chains of 4 edges between corners; each rim edge runs between two
+  // corners. Corners separate chains, so no rim or back edge takes the apex's 6, and
+  // no rim the back edges' 4.
+  const TriSurface w = wedge_prism(15.0, 4.0, 2.0, 4);
+  const ColumnLayout l = layout_of(w);
+  std::map<std::pair<int, int>, int> slices;  // per ridge edge (wall points)
+  for (const LayerElement& e : l.elements) {
+    if (e.kind != ElementKind::kStrip) continue;
+    const int a = l.wall_point[e.column[0]], b = l.wall_point[e.column[3]];
+    ++slices[{std::min(a, b), std::max(a, b)}];
+  }
+  const EdgeTopology edges = build_edge_topology(w);
+  int n_ridges = 0, n_three = 0, n_four = 0;
+  for (const SurfaceEdge& e : edges.edges) {
+    const double turn = degrees(angle_between(unit_normal(w, e.triangle[0]), unit_normal(w, e.triangle[1])));
+    if (turn <= 60.0) continue;
+    ++n_ridges;
+    const int expected = static_cast<int>(std::ceil(turn / 30.0 - 1e-9));
+    n_three += expected == 3;
+    n_four += expected == 4;
+    EXPECT_EQ(slices[std::make_pair(e.lo, e.hi)], expected) << "edge " << e.lo << "-" << e.hi << " turning " << turn;
+  }
+  EXPECT_EQ(n_ridges, 3 * 4 + 2 * 3);
+  EXPECT_EQ(n_three, 2 * 3);
+  EXPECT_EQ(n_four, 2 * 4);
+  EXPECT_EQ(static_cast<int>(slices.size()), n_ridges);
   expect_closed_and_oriented(l.front);
 }
 

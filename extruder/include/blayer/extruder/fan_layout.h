@@ -12,10 +12,11 @@
 //   column along the sector's own normal (normal_method on the sector's faces: for a
 //   flat sector, the face normal). Across each ridge edge the directions between the two
 //   sectors' normals are interpolated (slerp) so that no angular gap exceeds
-//   max_sector: m - 1 sub-normal columns, m uniform over a connected ridge network (and
-//   even where the network has a ridge end). A corner (three or more ridge edges) also
-//   gets a centre column (the normalised sum of its loop's directions), and its loop of
-//   directions is closed by a patch of triangles around it.
+//   max_sector: m - 1 sub-normal columns, m uniform over a ridge chain (ridge edges
+//   joined through fan points on exactly two of them; corners and ridge ends separate
+//   chains, since their fans across different edges are distinct). A corner (three or
+//   more ridge edges) also gets a centre column (the normalised sum of its loop's
+//   directions), and its loop of directions is closed by a patch of triangles around it.
 //
 // The front (TriSurface `front`: one point per column, at the column's wall point)
 //   - each wall triangle, on the columns of its sector at each of its points;
