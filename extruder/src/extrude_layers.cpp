@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
 #include "blayer/core/stopwatch.h"
@@ -114,23 +116,36 @@ std::vector<int> fan_points_failing_straight_layers(const TriSurface& wall, cons
       up[c] = p + std::clamp(planes.step_to_height(c, p, dirs.n[c], h), h, params.max_step_stretch * h) * dirs.n[c];
       grows[c] = 1;
     }
-    for (std::size_t i : checked) {
-      const LayerElement& e = layout.elements[i];
+    // The elements are checked in parallel; the verdicts are merged in element order,
+    // so the failed set does not depend on the scheduling. An element whose fan points
+    // all failed already can add nothing.
+    std::vector<char> bad(checked.size(), 0);
+    tbb::parallel_for(std::size_t{0}, checked.size(), [&](std::size_t x) {
+      const LayerElement& e = layout.elements[checked[x]];
+      bool news = false;
+      for (int j = 0; j < e.n_columns() && !news; ++j)
+        news = layout.in_fan[e.column[j]] && !failed[layout.wall_point[e.column[j]]];
+      if (!news) return;
       LayerCell cells[2];
       const int n_cells = element_layer_cells(
           e, [&](int c) -> std::int64_t { return k == 0 ? layout.wall_point[c] : nv + c; },
           [&](int c) -> std::int64_t { return static_cast<std::int64_t>(nv) + nc + c; },
           [&](int c) { return grows[c] != 0; }, cells);
-      bool ok = true;
-      for (int q = 0; q < n_cells && ok; ++q) {
+      for (int q = 0; q < n_cells; ++q) {
         Vec3 corners[8];
         for (int j = 0; j < corner_count(cells[q].type); ++j) {
           const std::int64_t id = cells[q].nodes[j];
           corners[j] = id < nv ? wall.points[id] : id < nv + nc ? base[id - nv] : up[id - nv - nc];
         }
-        ok = cell_validity(cells[q].type, corners) == Validity::kValid;
+        if (cell_validity(cells[q].type, corners) != Validity::kValid) {
+          bad[x] = 1;
+          return;
+        }
       }
-      if (ok) continue;
+    });
+    for (std::size_t x = 0; x < checked.size(); ++x) {
+      if (!bad[x]) continue;
+      const LayerElement& e = layout.elements[checked[x]];
       for (int j = 0; j < e.n_columns(); ++j)
         if (layout.in_fan[e.column[j]]) failed[layout.wall_point[e.column[j]]] = 1;
     }
@@ -288,22 +303,26 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   const WallTopology wall_topo = build_wall_topology(wall, params.symmetry);
   if (!(params.fan_angle_deg > 0.0)) {
     FanFailures none;
-    return march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &none);
+    const double t_before = total.seconds();
+    ExtrusionResult res = march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &none);
+    res.report.t_setup += t_before;
+    res.report.t_total = total.seconds();
+    return res;
   }
   // Fans; a fan point whose fan cannot grow its first layer falls back to one column,
   // and the extrusion is marched again (each attempt removes at least one fan point).
   const FanParams fp{params.fan_angle_deg, params.fan_max_sector_deg};
   std::vector<char> excluded = wall_topo.on_plane;
   int n_fallback = 0, precheck_rounds = 0;
-  double t_layout = 0.0;
   for (int attempt = 0;; ++attempt) {
-    const Stopwatch layout_time;
     const ColumnLayout layout = build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded);
-    t_layout += layout_time.seconds();
+    const WallTopology column_topo = build_column_topology(layout, params.symmetry);
+    // Setup counts everything before the march that delivers: the wall tables, the
+    // layouts and the attempts whose fan points fell back.
+    const double t_before = total.seconds();
     FanFailures failures;
     const bool last_attempt = attempt + 1 >= kMaxFanAttempts;
-    ExtrusionResult res = march(wall, wall_topo, layout, build_column_topology(layout, params.symmetry), params,
-                                progress, !last_attempt, &failures);
+    ExtrusionResult res = march(wall, wall_topo, layout, column_topo, params, progress, !last_attempt, &failures);
     std::vector<int>& precheck = failures.precheck;
     if (!precheck.empty()) {
       // Each round rebuilds the layout and its directions: when most fans fail, or
@@ -335,7 +354,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
       f.fallback_points = n_fallback;
       f.failed_points = static_cast<int>(failed.size());
       f.attempts = attempt + 1;
-      res.report.t_setup += t_layout;
+      res.report.t_setup += t_before;
       res.report.t_total = total.seconds();
       return res;
     }

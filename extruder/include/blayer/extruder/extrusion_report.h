@@ -100,7 +100,7 @@ struct ExtrusionReport {
   double min_visibility = 0.0;  // min V over all steps taken
 
   // Wall-clock seconds per phase.
-  double t_setup = 0.0;       // fans, wall directions, column plan
+  double t_setup = 0.0;       // wall tables, fans (with discarded attempts), directions, plan
   double t_normals = 0.0;     // directions on every front
   double t_proximity = 0.0;   // ray limiter
   double t_checks = 0.0;      // exact cell validity and front intersection checks
