@@ -161,10 +161,18 @@ void CandidatePool::consider(Vec3 n) {
   // The distance test runs first, against the lower of the two thresholds (best_c_ <=
   // best_u_), since it rejects most candidates; V is needed only for the survivors. A
   // candidate it passes has its exact D, then meets the threshold of its feasibility.
+  // In the constrained pass an infeasible candidate is dropped whatever its D, so V
+  // (one dot product per face) comes first there: most candidates on the constraint
+  // circles of nearly parallel faces lie below another face's circle.
+  double v = 0.0;
+  if (constrained_pass_) {
+    v = fan_visibility(g_, n);
+    if (!(!constrained_ || v >= v_min_ - kConstraintSlack)) return;
+  }
   double d;
   bool fluid;
   if (!evaluate(n, threshold(), &d, &fluid) || !fluid) return;
-  const double v = fan_visibility(g_, n);
+  if (!constrained_pass_) v = fan_visibility(g_, n);
   const bool feasible = !constrained_ || v >= v_min_ - kConstraintSlack;
   if (constrained_pass_ && !feasible) return;
   if (!feasible && d < unconstrained_threshold()) return;
