@@ -418,6 +418,26 @@ void SiteSubdivision::plateau_peaks() {
   }
 }
 
+// A face whose visibility exceeds another's by more than the feasibility slack all over
+// the leaf has its constraint circle there where the other face is infeasible: every
+// candidate on it would be dropped by the constrained pass (CandidatePool::consider). Faces of a fan-triangulated
+// CAD face have nearly parallel normals, and their circles cross the same leaves.
+void SiteSubdivision::drop_circles_below_another(const Leaf& leaf, int lowest, std::vector<int>* crossing) const {
+  // Candidates reach the leaf within rho + kBoundMargin of its centre (offer).
+  const double rho = leaf.rho + kBoundMargin;
+  if (lowest < 0 || !pool_.constrained() || !(rho < 0.5 * M_PI)) return;
+  const Vec3& low = g_.face_normals[lowest];
+  const double s = std::sin(rho), c = std::cos(rho);
+  auto dominated = [&](int i) {
+    if (i == lowest) return false;
+    const Vec3 delta = g_.face_normals[i] - low;
+    const double along = dot(leaf.c, delta);
+    // min over the leaf of n.delta, exact when the leaf lies within 90 degrees of delta
+    return along > 0.0 && along * c - norm(cross(leaf.c, delta)) * s > kConstraintSlack + kBoundMargin;
+  };
+  crossing->erase(std::remove_if(crossing->begin(), crossing->end(), dominated), crossing->end());
+}
+
 void SiteSubdivision::constraint_circles() {
   pool_.begin_constrained_pass();
   const double v_min = pool_.v_min();
@@ -425,10 +445,14 @@ void SiteSubdivision::constraint_circles() {
   for (const Leaf& leaf : leaves_) {
     if (!leaf_alive(leaf, true)) continue;
     crossing.clear();
+    int lowest = -1;  // the leaf's face of least visibility at its centre
     for (int t = 0; t < leaf.n_faces; ++t) {
       const int i = leaf_ids_[leaf.faces_begin + t];
-      if (std::fabs(dot(leaf.c, g_.face_normals[i]) - v_min) <= leaf.rho + kBoundMargin) crossing.push_back(i);
+      const double v = dot(leaf.c, g_.face_normals[i]);
+      if (lowest < 0 || v < dot(leaf.c, g_.face_normals[lowest])) lowest = i;
+      if (std::fabs(v - v_min) <= leaf.rho + kBoundMargin) crossing.push_back(i);
     }
+    drop_circles_below_another(leaf, lowest, &crossing);
     if (crossing.empty()) continue;
     auto emit = [&](const Vec3& n) { offer(leaf, n); };
     constraint_candidates(g_, s_, subset(leaf), crossing.data(), static_cast<int>(crossing.size()), v_min, emit);

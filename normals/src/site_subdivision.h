@@ -120,6 +120,8 @@ class SiteSubdivision {
   // of cost, pairs are taken among the cell's vertices within reach (near_, which it
   // reorders).
   bool pair_bound_below(const Vec3& c, double rho);
+  // Removes from *crossing the faces whose circles lie where face `lowest` is infeasible.
+  void drop_circles_below_another(const Leaf& leaf, int lowest, std::vector<int>* crossing) const;
   void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end);
   void offer(const Leaf& leaf, const Vec3& n);
   void offer_anywhere(const Vec3& n);
