@@ -72,10 +72,6 @@ constexpr double kMaxLensRadius = 0.5;
 // dot products.
 constexpr double kLensCapMargin = 1e-12;
 
-// Largest link whose cap is enumerated when Wolfe's iteration leaves it uncertified: the
-// enumeration grows as k^4 and, on the CAD-like fans of valence 60, costs as much as it
-// saves.
-constexpr int kMaxCapEnumeration = 60;
 
 enum class Strategy { kEnumeration, kPrunedEnumeration, kSubdivision };
 
@@ -156,13 +152,13 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
   cap_tol.min_visibility = kLensCapMargin;
   MostVisibleResult cap;
   // Near-flat CAD fans whose link vertices fit in a hemisphere by a hair often leave
-  // Wolfe's iteration uncertified: up to kMaxCapEnumeration link vertices the exact
-  // enumeration then gives the cap, which keeps the search in the lens instead of the
-  // whole sphere (on one sliver fan, 189 cells against 8162).
+  // Wolfe's iteration uncertified: the supports on the hull of the link vertices then
+  // give the cap (the enumeration's answer in O(k^2)), which keeps the search in the lens
+  // instead of the whole sphere (on one sliver fan, 189 cells against 8162).
   const WolfeOutcome outcome = wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap);
   bool capped = outcome == WolfeOutcome::kCertified && cap.feasible;
-  if (outcome == WolfeOutcome::kUncertified && g.n_faces() <= kMaxCapEnumeration) {
-    cap = most_visible_by_enumeration(g.dirs.data(), g.n_faces(), cap_tol);
+  if (outcome == WolfeOutcome::kUncertified) {
+    cap = most_visible_on_hull(g.dirs.data(), g.n_faces(), cap_tol);
     capped = cap.feasible;
   }
   double radius = -1.0;

@@ -191,7 +191,10 @@ MostVisibleResult best_margin_direction(const Vec3* f, int k) {
   return search.result();
 }
 
-MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k, const Tolerances& tol) {
+namespace {
+
+// The distinct normals (closer than tol.duplicate_normal merged), in input order.
+std::vector<Vec3> distinct_normals(const Vec3* f, int k, const Tolerances& tol) {
   std::vector<Vec3> u;
   u.reserve(k);
   for (int i = 0; i < k; ++i) {
@@ -199,14 +202,18 @@ MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k, const Tolera
     for (const Vec3& w : u) dup |= norm(f[i] - w) < tol.duplicate_normal;
     if (!dup) u.push_back(f[i]);
   }
-  const int m = static_cast<int>(u.size());
-  double best = std::numeric_limits<double>::infinity();
-  Vec3 best_q{0.0, 0.0, 0.0};
-  int best_support = 0;
-  auto try_support = [&](std::initializer_list<int> s) {
+  return u;
+}
+
+// The certified min-norm point among the supports offered (|S| <= 3): the smallest
+// |q|^2, the first of equal ones.
+class SupportSearch {
+ public:
+  explicit SupportSearch(const std::vector<Vec3>& u) : u_(u) {}
+  void offer(std::initializer_list<int> s) {
     const Vec3* pts[3];
     int n = 0;
-    for (int i : s) pts[n++] = &u[i];
+    for (int i : s) pts[n++] = &u_[i];
     double lambda[3];
     if (!affine_min_norm(pts, n, lambda)) return;
     Vec3 q{0.0, 0.0, 0.0};
@@ -215,21 +222,73 @@ MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k, const Tolera
       q += lambda[i] * *pts[i];
     }
     const double qq = norm2(q);
-    if (qq >= best) return;
-    if (!certified(u.data(), m, q)) return;
-    best = qq;
-    best_q = q;
-    best_support = n;
-  };
+    if (qq >= best_) return;
+    if (!certified(u_.data(), static_cast<int>(u_.size()), q)) return;
+    best_ = qq;
+    best_q_ = q;
+    support_ = n;
+  }
+  // The answer of the supports offered, or best_margin_direction without a certified one.
+  MostVisibleResult finish(const Vec3* f, int k, const Tolerances& tol) const {
+    if (support_ == 0) return best_margin_direction(f, k);
+    return finish_feasible(f, k, best_q_, support_, tol);
+  }
+
+ private:
+  const std::vector<Vec3>& u_;
+  double best_ = std::numeric_limits<double>::infinity();
+  Vec3 best_q_{0.0, 0.0, 0.0};
+  int support_ = 0;
+};
+
+}  // namespace
+
+MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k, const Tolerances& tol) {
+  const std::vector<Vec3> u = distinct_normals(f, k, tol);
+  const int m = static_cast<int>(u.size());
+  SupportSearch search(u);
   for (int a = 0; a < m; ++a) {
-    try_support({a});
+    search.offer({a});
     for (int b = a + 1; b < m; ++b) {
-      try_support({a, b});
-      for (int c = b + 1; c < m; ++c) try_support({a, b, c});
+      search.offer({a, b});
+      for (int c = b + 1; c < m; ++c) search.offer({a, b, c});
     }
   }
-  if (best_support == 0) return best_margin_direction(f, k);
-  return finish_feasible(f, k, best_q, best_support, tol);
+  return search.finish(f, k, tol);
+}
+
+MostVisibleResult most_visible_on_hull(const Vec3* f, int k, const Tolerances& tol) {
+  const std::vector<Vec3> u = distinct_normals(f, k, tol);
+  thread_local std::vector<std::array<int, 3>> facets;
+  if (!detail::normal_hull_facets(u.data(), static_cast<int>(u.size()), &facets))
+    return most_visible_by_enumeration(f, k, tol);
+  // The supports keyed (a, b, c) as the enumeration meets them: a vertex (a, -1, -1),
+  // an edge (a, b, -1), a facet (a, b, c), a < b < c; so the first of equal |q| is the
+  // enumeration's unless its winner was a support off the hull (equal to rounding).
+  thread_local std::vector<std::array<int, 3>> keys;
+  keys.clear();
+  for (std::array<int, 3> t : facets) {
+    std::sort(t.begin(), t.end());
+    if (t[0] == t[1] || t[1] == t[2]) continue;
+    keys.push_back(t);
+    for (const std::array<int, 3>& e : {std::array<int, 3>{t[0], t[1], -1}, std::array<int, 3>{t[0], t[2], -1},
+                                        std::array<int, 3>{t[1], t[2], -1}, std::array<int, 3>{t[0], -1, -1},
+                                        std::array<int, 3>{t[1], -1, -1}, std::array<int, 3>{t[2], -1, -1}})
+      keys.push_back(e);
+  }
+  std::sort(keys.begin(), keys.end());  // -1 first: the enumeration's order
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  SupportSearch search(u);
+  for (const auto& [a, b, c] : keys) {
+    if (b < 0) {
+      search.offer({a});
+    } else if (c < 0) {
+      search.offer({a, b});
+    } else {
+      search.offer({a, b, c});
+    }
+  }
+  return search.finish(f, k, tol);
 }
 
 WolfeOutcome wolfe_min_norm_point(const Vec3* f, int k, const Tolerances& tol, MostVisibleResult* out) {

@@ -2,7 +2,8 @@
 // candidates of the hull of the face normals) against the enumeration of every single
 // face, pair and triple (best_margin_direction_by_enumeration), on point sets that put
 // the origin inside the hull, just outside it, on it, and hulls with coplanar facets,
-// repeated normals and no volume.
+// repeated normals and no volume. Likewise the most-visible normal from the supports on
+// the hull (most_visible_on_hull) against most_visible_by_enumeration.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -124,6 +125,68 @@ TEST(BestMargin, MatchesTheEnumerationOnCadLikeFans) {
     expect_same_margin(g.face_normals, label);
   });
   EXPECT_GT(n, 80);
+}
+
+// Same answer as the enumeration of every support, to rounding, and the same verdict on
+// feasibility. Infeasible answers are not compared: with the origin within rounding of
+// the hull any tiny q passes the certificate, and which one does is arbitrary (callers
+// use a cap only when it is feasible).
+// Returns whether the enumeration's answer is feasible.
+bool expect_same_most_visible(const std::vector<Vec3>& f, const std::string& what,
+                              const Tolerances& tol = default_tolerances()) {
+  const int k = static_cast<int>(f.size());
+  const MostVisibleResult hull = most_visible_on_hull(f.data(), k, tol);
+  const MostVisibleResult all = most_visible_by_enumeration(f.data(), k, tol);
+  EXPECT_EQ(hull.feasible, all.feasible) << what;
+  if (!all.feasible) return false;
+  EXPECT_NEAR(hull.visibility, all.visibility, 1e-12) << what;
+  EXPECT_LE(norm(hull.normal - all.normal), 1e-9) << what;
+  return true;
+}
+
+// The link directions of CAD-like fans (near-flat links whose cap is a hemisphere by a
+// hair, where Wolfe's iteration is often uncertified: the case the solver uses the hull
+// for, with its visibility floor of 1e-12) and their face normals.
+TEST(MostVisibleOnHull, MatchesTheEnumerationOnCadLikeFans) {
+  std::mt19937 rng(2029);
+  Tolerances cap_tol = default_tolerances();
+  cap_tol.min_visibility = 1e-12;
+  int n = 0, uncertified_feasible = 0;
+  testing_fans::for_each_cad_fan(rng, {12, 24, 40, 60}, 2, [&](const FanGeometry& g, const std::string& label) {
+    ++n;
+    MostVisibleResult wolfe;
+    const bool uncertified =
+        wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &wolfe) == WolfeOutcome::kUncertified;
+    uncertified_feasible += expect_same_most_visible(g.dirs, "link of " + label, cap_tol) && uncertified;
+    expect_same_most_visible(g.face_normals, "faces of " + label);
+  });
+  EXPECT_GT(n, 80);
+  EXPECT_GT(uncertified_feasible, 0);
+  RecordProperty("uncertified_feasible_links", uncertified_feasible);
+}
+
+// Directions in caps just under and over a hemisphere, and within small caps: the
+// min-norm point on a facet, an edge or a vertex of the hull, or the origin inside it.
+TEST(MostVisibleOnHull, MatchesTheEnumerationOnRandomCaps) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int feasible = 0, infeasible = 0;
+  for (double rim : {-1e-3, -1e-6, 1e-6, 1e-3, 0.5})
+    for (int k : {4, 6, 10, 16, 30})
+      for (int t = 0; t < 10; ++t) {
+        std::vector<Vec3> f;
+        for (int i = 0; i < k; ++i) {
+          const double phi = 2.0 * M_PI * u(rng);
+          const double z = i < 3 ? rim : rim + (1.0 - rim) * u(rng);
+          const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+          f.push_back({r * std::cos(phi), r * std::sin(phi), z});
+        }
+        const std::string what = "rim " + std::to_string(rim) + " k " + std::to_string(k) + " #" + std::to_string(t);
+        expect_same_most_visible(f, what);
+        (most_visible_by_enumeration(f.data(), k).feasible ? feasible : infeasible) += 1;
+      }
+  EXPECT_GT(feasible, 50);
+  EXPECT_GT(infeasible, 20);
 }
 
 }  // namespace

@@ -37,6 +37,12 @@ struct MostVisibleResult {
 MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& tol = default_tolerances());
 MostVisibleResult most_visible_by_enumeration(const Vec3* f, int k,
                                               const Tolerances& tol = default_tolerances());
+// The enumeration's answer from the supports on conv{f_i}'s boundary only: its vertices,
+// edges and facets (exact predicates), O(k^2) after an O(k log k) hull instead of O(k^4);
+// q* lies on the boundary when 0 is outside the hull, in a facet, edge or vertex of the
+// triangulated hull. Equal to the enumeration up to rounding (a tie between supports that
+// give the same q*); normals that span no volume go to the enumeration.
+MostVisibleResult most_visible_on_hull(const Vec3* f, int k, const Tolerances& tol = default_tolerances());
 
 // max over unit n of min_i n.f_i with its maximiser (the graded margin of a fan with no
 // visible direction), by direct evaluation of the candidates built from the vertices,
