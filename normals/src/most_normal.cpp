@@ -72,7 +72,6 @@ constexpr double kMaxLensRadius = 0.5;
 // dot products.
 constexpr double kLensCapMargin = 1e-12;
 
-
 enum class Strategy { kEnumeration, kPrunedEnumeration, kSubdivision };
 
 // Winding number of the link around n (every triangle seen from n): one turn means a

@@ -420,14 +420,19 @@ void SiteSubdivision::plateau_peaks() {
 
 // A face whose visibility exceeds another's by more than the feasibility slack all over
 // the leaf has its constraint circle there where the other face is infeasible: every
-// candidate on it would be dropped by the constrained pass (CandidatePool::consider). Faces of a fan-triangulated
-// CAD face have nearly parallel normals, and their circles cross the same leaves.
+// candidate on it would be dropped by the constrained pass (CandidatePool::consider).
+// Faces of a fan-triangulated CAD face have nearly parallel normals, and their circles
+// cross the same leaves. A candidate that the rounding of two nearly parallel circles
+// put off its circle goes with it: the only candidates dropped that could have been
+// kept, and then only as ties.
 void SiteSubdivision::drop_circles_below_another(const Leaf& leaf, int lowest, std::vector<int>* crossing) const {
-  // Candidates reach the leaf within rho + kBoundMargin of its centre (offer).
-  const double rho = leaf.rho + kBoundMargin;
-  if (lowest < 0 || !pool_.constrained() || !(rho < 0.5 * M_PI)) return;
+  // The directions offer() lets into the leaf: n.c >= cos_cap |n|.
+  const double c = leaf.cos_cap;
+  if (lowest < 0 || !pool_.constrained() || !(c > 0.0)) return;
+  // 4e-16 covers the rounding of 1 - c^2 (c^2 rounds by at most 1.2e-16), so that s
+  // is never below the sine of the admitted radius.
+  const double s = std::sqrt(std::max(0.0, 1.0 - c * c) + 4e-16);
   const Vec3& low = g_.face_normals[lowest];
-  const double s = std::sin(rho), c = std::cos(rho);
   auto dominated = [&](int i) {
     if (i == lowest) return false;
     const Vec3 delta = g_.face_normals[i] - low;
