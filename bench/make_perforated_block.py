@@ -4,7 +4,7 @@ exports are: Gmsh's OpenCASCADE kernel meshes the solid with no size limit insid
 faces, so the planar faces are triangulated between their boundary points only (long thin
 triangles, points of valence up to 80) and each hole's wall is a band of chords between
 its two rims of 96 points. Every point lies on a sharp edge. With the defaults: 11,567
-points, 23,330 triangles. Needs gmsh (scripts/install-deps.sh --extras).
+points, 23,330 triangles. Needs gmsh (scripts/install-deps.sh installs it).
 Usage: make_perforated_block.py OUT.off [points per hole rim, default 96]"""
 import os, subprocess, sys, tempfile
 

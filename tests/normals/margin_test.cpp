@@ -151,9 +151,11 @@ TEST(MostVisibleOnHull, MatchesTheEnumerationOnCadLikeFans) {
   std::mt19937 rng(2029);
   Tolerances cap_tol = default_tolerances();
   cap_tol.min_visibility = 1e-12;
-  int n = 0, uncertified_feasible = 0;
+  int n = 0, uncertified_feasible = 0, on_hull = 0;
+  std::vector<std::array<int, 3>> facets;
   testing_fans::for_each_cad_fan(rng, {12, 24, 40, 60}, 2, [&](const FanGeometry& g, const std::string& label) {
     ++n;
+    on_hull += detail::normal_hull_facets(g.dirs.data(), g.n_faces(), &facets);  // not the enumeration's path
     MostVisibleResult wolfe;
     const bool uncertified =
         wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &wolfe) == WolfeOutcome::kUncertified;
@@ -161,6 +163,7 @@ TEST(MostVisibleOnHull, MatchesTheEnumerationOnCadLikeFans) {
     expect_same_most_visible(g.face_normals, "faces of " + label);
   });
   EXPECT_GT(n, 80);
+  EXPECT_GT(on_hull, n / 2);
   EXPECT_GT(uncertified_feasible, 0);
   RecordProperty("uncertified_feasible_links", uncertified_feasible);
 }
@@ -187,6 +190,34 @@ TEST(MostVisibleOnHull, MatchesTheEnumerationOnRandomCaps) {
       }
   EXPECT_GT(feasible, 50);
   EXPECT_GT(infeasible, 20);
+}
+
+// Repeated normals (merged, or within rounding of each other), two squares on parallel
+// circles (coplanar facets, q* on a facet's diagonal, several supports tie), three
+// normals and normals on one small circle (no volume: the enumeration's path).
+TEST(MostVisibleOnHull, MatchesTheEnumerationOnDegenerateSets) {
+  auto tilted = [](double x, double y) { return normalized(Vec3{x, y, 1.0}); };
+  std::vector<Vec3> square;
+  for (double x : {-0.2, 0.2})
+    for (double y : {-0.2, 0.2}) square.push_back(tilted(x + 0.3, y));
+  square.push_back(tilted(0.1, 0.0));  // inside: not on the hull
+  expect_same_most_visible(square, "square cap");
+  std::vector<Vec3> repeats = square;
+  repeats.push_back(square[0]);
+  repeats.push_back(normalized(square[1] + Vec3{1e-15, 0.0, 0.0}));
+  expect_same_most_visible(repeats, "repeated normals");
+  std::vector<Vec3> rings;  // two squares on parallel circles: q* = (0, 0, 0.8) on a diagonal
+  for (int i = 0; i < 4; ++i)
+    for (double z : {0.8, 0.9}) {
+      const double a = 0.5 * M_PI * i + (z > 0.85 ? 0.25 * M_PI : 0.0), r = std::sqrt(1.0 - z * z);
+      rings.push_back({r * std::cos(a), r * std::sin(a), z});
+    }
+  expect_same_most_visible(rings, "two rings");
+  EXPECT_NEAR(most_visible_on_hull(rings.data(), 8).visibility, 0.8, 1e-12);
+  expect_same_most_visible({tilted(0.1, 0.0), tilted(-0.1, 0.1), tilted(0.0, -0.2)}, "three normals");
+  std::vector<Vec3> circle;
+  for (int i = 0; i < 9; ++i) circle.push_back(normalized(Vec3{std::cos(0.7 * i), std::sin(0.7 * i), 3.0}));
+  expect_same_most_visible(circle, "small circle");
 }
 
 }  // namespace
