@@ -164,17 +164,17 @@ void CandidatePool::consider(Vec3 n) {
   // In the constrained pass an infeasible candidate is dropped whatever its D, so V
   // (one dot product per face) comes first there: most candidates on the constraint
   // circles of nearly parallel faces lie below another face's circle.
+  auto feasible_at = [&](double v) { return !constrained_ || v >= v_min_ - kConstraintSlack; };
   double v = 0.0;
   if (constrained_pass_) {
     v = fan_visibility(g_, n);
-    if (!(!constrained_ || v >= v_min_ - kConstraintSlack)) return;
+    if (!feasible_at(v)) return;
   }
   double d;
   bool fluid;
   if (!evaluate(n, threshold(), &d, &fluid) || !fluid) return;
   if (!constrained_pass_) v = fan_visibility(g_, n);
-  const bool feasible = !constrained_ || v >= v_min_ - kConstraintSlack;
-  if (constrained_pass_ && !feasible) return;
+  const bool feasible = feasible_at(v);
   if (!feasible && d < unconstrained_threshold()) return;
   if (d > best_u_) {
     best_u_ = d;

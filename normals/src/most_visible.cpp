@@ -151,6 +151,31 @@ MostVisibleResult best_margin_direction_by_enumeration(const Vec3* f, int k) {
   return search.result();
 }
 
+namespace {
+
+// The features of a triangulated hull keyed (a, b, c) as the enumeration over every
+// vertex, pair and triple meets them: a vertex (a, -1, -1), an edge (a, b, -1), a facet
+// (a, b, c), a < b < c, sorted and distinct (-1 sorts first). The first n_vertices
+// vertices are listed whether on the hull or not (0 for the hull's own only).
+void hull_feature_keys(const std::vector<std::array<int, 3>>& facets, int n_vertices,
+                       std::vector<std::array<int, 3>>* keys) {
+  keys->clear();
+  for (int a = 0; a < n_vertices; ++a) keys->push_back({a, -1, -1});
+  for (std::array<int, 3> t : facets) {
+    std::sort(t.begin(), t.end());
+    if (t[0] == t[1] || t[1] == t[2]) continue;
+    keys->push_back(t);
+    for (const std::array<int, 3>& e : {std::array<int, 3>{t[0], t[1], -1}, std::array<int, 3>{t[0], t[2], -1},
+                                        std::array<int, 3>{t[1], t[2], -1}, std::array<int, 3>{t[0], -1, -1},
+                                        std::array<int, 3>{t[1], -1, -1}, std::array<int, 3>{t[2], -1, -1}})
+      keys->push_back(e);
+  }
+  std::sort(keys->begin(), keys->end());
+  keys->erase(std::unique(keys->begin(), keys->end()), keys->end());
+}
+
+}  // namespace
+
 // The optimum is -(the unit outward normal of the hull facet nearest to the origin) when
 // the origin lies inside conv{f_i} or on its boundary (the support function's least
 // value on the sphere is the distance to the nearest facet plane), and the direction of
@@ -163,21 +188,8 @@ MostVisibleResult best_margin_direction_by_enumeration(const Vec3* f, int k) {
 MostVisibleResult best_margin_direction(const Vec3* f, int k) {
   thread_local std::vector<std::array<int, 3>> facets;
   if (!detail::normal_hull_facets(f, k, &facets)) return best_margin_direction_by_enumeration(f, k);
-  // Candidates keyed (a, b, c) as the enumeration meets them: a vertex (a, -1, -1), an
-  // edge (a, b, -1), a facet (a, b, c), a < b < c.
   thread_local std::vector<std::array<int, 3>> keys;
-  keys.clear();
-  for (int a = 0; a < k; ++a) keys.push_back({a, -1, -1});
-  for (std::array<int, 3> t : facets) {
-    std::sort(t.begin(), t.end());
-    if (t[0] == t[1] || t[1] == t[2]) continue;
-    keys.push_back(t);
-    keys.push_back({t[0], t[1], -1});
-    keys.push_back({t[0], t[2], -1});
-    keys.push_back({t[1], t[2], -1});
-  }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  hull_feature_keys(facets, k, &keys);
   MarginSearch search(f, k);
   for (const auto& [a, b, c] : keys) {
     if (b < 0) {
@@ -262,22 +274,10 @@ MostVisibleResult most_visible_on_hull(const Vec3* f, int k, const Tolerances& t
   thread_local std::vector<std::array<int, 3>> facets;
   if (!detail::normal_hull_facets(u.data(), static_cast<int>(u.size()), &facets))
     return most_visible_by_enumeration(f, k, tol);
-  // The supports keyed (a, b, c) as the enumeration meets them: a vertex (a, -1, -1),
-  // an edge (a, b, -1), a facet (a, b, c), a < b < c; so the first of equal |q| is the
-  // enumeration's unless its winner was a support off the hull (equal to rounding).
+  // In the enumeration's order, so that the first of equal |q| is the enumeration's
+  // unless its winner was a support off the hull (equal to rounding).
   thread_local std::vector<std::array<int, 3>> keys;
-  keys.clear();
-  for (std::array<int, 3> t : facets) {
-    std::sort(t.begin(), t.end());
-    if (t[0] == t[1] || t[1] == t[2]) continue;
-    keys.push_back(t);
-    for (const std::array<int, 3>& e : {std::array<int, 3>{t[0], t[1], -1}, std::array<int, 3>{t[0], t[2], -1},
-                                        std::array<int, 3>{t[1], t[2], -1}, std::array<int, 3>{t[0], -1, -1},
-                                        std::array<int, 3>{t[1], -1, -1}, std::array<int, 3>{t[2], -1, -1}})
-      keys.push_back(e);
-  }
-  std::sort(keys.begin(), keys.end());  // -1 first: the enumeration's order
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  hull_feature_keys(facets, 0, &keys);
   SupportSearch search(u);
   for (const auto& [a, b, c] : keys) {
     if (b < 0) {

@@ -436,9 +436,7 @@ void SiteSubdivision::drop_circles_below_another(const Leaf& leaf, int lowest, s
   auto dominated = [&](int i) {
     if (i == lowest) return false;
     const Vec3 delta = g_.face_normals[i] - low;
-    const double along = dot(leaf.c, delta);
-    // min over the leaf of n.delta, exact when the leaf lies within 90 degrees of delta
-    return along > 0.0 && along * c - norm(cross(leaf.c, delta)) * s > kConstraintSlack + kBoundMargin;
+    return dot(leaf.c, delta) > 0.0 && cap_min_dot(leaf.c, c, s, delta) > kConstraintSlack + kBoundMargin;
   };
   crossing->erase(std::remove_if(crossing->begin(), crossing->end(), dominated), crossing->end());
 }

@@ -47,15 +47,20 @@
 namespace blayer {
 namespace detail {
 
-// A lower bound of max(n.u_a, n.u_b) over the cap B(c, rho) (unit c; cos_rho, sin_rho of
-// rho < 90 deg): every n has max(n.u_a, n.u_b) >= n.q, q = (u_a + u_b) / 2, and on the cap
-// n.q >= |q| cos(angle(c, q) + rho) = (c.q) cos rho - |c x q| sin rho while angle(c, q) +
-// rho <= 180 deg, which c.q >= 0 ensures; -2 (no bound) otherwise. So D <= arccos of it
-// on the whole cap, u_a and u_b being link vertices.
+// min of n.x over the cap B(c, rho) (unit c; cos_rho, sin_rho of rho < 90 deg) when
+// c.x >= 0: |x| cos(angle(c, x) + rho) = (c.x) cos rho - |c x x| sin rho, the angle sum
+// then staying within 180 deg.
+inline double cap_min_dot(const Vec3& c, double cos_rho, double sin_rho, const Vec3& x) {
+  return dot(c, x) * cos_rho - norm(cross(c, x)) * sin_rho;
+}
+
+// A lower bound of max(n.u_a, n.u_b) over the cap B(c, rho): every n has
+// max(n.u_a, n.u_b) >= n.q, q = (u_a + u_b) / 2, bounded by cap_min_dot when c.q >= 0;
+// -2 (no bound) otherwise. So D <= arccos of it on the whole cap, u_a and u_b being link
+// vertices.
 inline double pair_cap_cosine(const Vec3& c, double cos_rho, double sin_rho, const Vec3& u_a, const Vec3& u_b) {
   const Vec3 q = 0.5 * (u_a + u_b);
-  const double cq = dot(c, q);
-  return cq >= 0.0 ? cq * cos_rho - norm(cross(c, q)) * sin_rho : -2.0;
+  return dot(c, q) >= 0.0 ? cap_min_dot(c, cos_rho, sin_rho, q) : -2.0;
 }
 
 struct SubdivisionStats {
