@@ -14,6 +14,7 @@
 #include "blayer/core/vec3.h"
 #include "blayer/normals/fan_geometry.h"
 #include "blayer/normals/most_normal.h"
+#include "recycled_vector.h"
 
 namespace blayer {
 namespace detail {
@@ -122,8 +123,8 @@ class CandidatePool {
   double best_u_ = -std::numeric_limits<double>::infinity();
   double floor_ = -std::numeric_limits<double>::infinity();
   Vec3 floor_direction_{0.0, 0.0, 0.0};
-  std::vector<Maximizer> maxima_;    // D >= best_c_ - tie among V >= V_min
-  std::vector<Maximizer> maxima_u_;  // D >= best_u_ - tie, any V
+  RecycledVector<Maximizer> maxima_;    // D >= best_c_ - tie among V >= V_min
+  RecycledVector<Maximizer> maxima_u_;  // D >= best_u_ - tie, any V
   int n_candidates_ = 0;
   // Scratch of evaluate(): per-arc tests, the cached pre-test bounds of the last
   // threshold, and the arc that rejected the last candidate.
@@ -133,7 +134,7 @@ class CandidatePool {
     double mm2;  // |n - (n.f) f|^2
     Kind kind;
   };
-  mutable std::vector<ArcTest> arc_tests_;
+  mutable RecycledVector<ArcTest> arc_tests_;
   mutable double thr_key_ = std::numeric_limits<double>::quiet_NaN();
   mutable double cos_thr_ = 2.0;
   mutable double sin_thr_ = -1.0;

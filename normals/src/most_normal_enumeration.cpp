@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "candidate_families.h"
+#include "recycled_vector.h"
 #include "sphere_solvers.h"
 
 namespace blayer {
@@ -24,9 +25,11 @@ constexpr double kCircleLevel = 1e-12;
 constexpr double kCircleRounding = 1e-14;
 
 struct Subsets {
-  std::vector<int> points, arcs;
+  RecycledVector<int> points, arcs;
   SiteSubset all;
-  explicit Subsets(const FanSites& s) : points(s.points.size()), arcs(s.arcs.size()) {
+  explicit Subsets(const FanSites& s) {
+    points.resize(s.points.size());
+    arcs.resize(s.arcs.size());
     std::iota(points.begin(), points.end(), 0);
     std::iota(arcs.begin(), arcs.end(), 0);
     all = {points.data(), static_cast<int>(points.size()), arcs.data(), static_cast<int>(arcs.size())};

@@ -299,7 +299,12 @@ bool SiteSubdivision::first_time(int a, int b, int c) {
   if (a > b) std::swap(a, b);
   const std::uint64_t key = (std::uint64_t(a + 1) << 42) | (std::uint64_t(b + 1) << 21) | std::uint64_t(c + 1);
   if (2 * (subset_count_ + 1) > subset_table_.size()) {
-    std::vector<std::uint64_t> old(subset_table_.size() * 2 > 64 ? subset_table_.size() * 2 : 64, 0);
+    if (subset_table_.empty()) {
+      // The first table of a solve, in the recycled buffer when there is one.
+      subset_table_.assign(64, 0);
+      return insert_subset(key);
+    }
+    std::vector<std::uint64_t> old(subset_table_.size() * 2, 0);
     old.swap(subset_table_);
     subset_count_ = 0;
     for (std::uint64_t k : old)

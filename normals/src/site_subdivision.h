@@ -43,6 +43,7 @@
 
 #include "candidate_pool.h"
 #include "fan_sites.h"
+#include "recycled_vector.h"
 
 namespace blayer {
 namespace detail {
@@ -140,23 +141,23 @@ class SiteSubdivision {
   CandidatePool& pool_;
   const FanGeometry& g_;
   const int k_;
-  std::vector<Chart> charts_;
+  RecycledVector<Chart> charts_;
   // Per fan arc: the normals of its foot-inside lune {n.a1 >= 0, n.a2 >= 0}; per merged
   // arc, the same for the merged arc.
-  std::vector<Vec3> lune1_, lune2_, merged_lune1_, merged_lune2_;
-  std::vector<int> arena_;  // active fan arcs and faces of the cells on the current path
-  std::vector<double> arc_cos_;  // scratch: cosine of each fan arc's distance at the cell centre
-  std::vector<int> arc_stamp_, vertex_stamp_;
+  RecycledVector<Vec3> lune1_, lune2_, merged_lune1_, merged_lune2_;
+  RecycledVector<int> arena_;  // active fan arcs and faces of the cells on the current path
+  RecycledVector<double> arc_cos_;  // scratch: cosine of each fan arc's distance at the cell centre
+  RecycledVector<int> arc_stamp_, vertex_stamp_;
   // Scratch of the cell being classified: (c.u_j, j) of the link vertices within reach.
-  std::vector<std::pair<double, int>> near_;
+  RecycledVector<std::pair<double, int>> near_;
   int pair_tries_ = 0, pair_drops_ = 0;
   int stamp_ = 0;
-  std::vector<int> leaf_points_, leaf_arcs_;  // scratch of the cell being classified
-  std::vector<Leaf> leaves_;
-  std::vector<int> leaf_ids_;
+  RecycledVector<int> leaf_points_, leaf_arcs_;  // scratch of the cell being classified
+  RecycledVector<Leaf> leaves_;
+  RecycledVector<int> leaf_ids_;
   // Sorted site triples (ids + 1, 0 for an absent one) already enumerated, open
   // addressing.
-  std::vector<std::uint64_t> subset_table_;
+  RecycledVector<std::uint64_t> subset_table_;
   std::size_t subset_count_ = 0;
   int n_points_ = 0;
   SubdivisionStats stats_;
