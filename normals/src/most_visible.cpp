@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -159,19 +160,29 @@ namespace {
 // vertices are listed whether on the hull or not (0 for the hull's own only).
 void hull_feature_keys(const std::vector<std::array<int, 3>>& facets, int n_vertices,
                        std::vector<std::array<int, 3>>* keys) {
-  keys->clear();
-  for (int a = 0; a < n_vertices; ++a) keys->push_back({a, -1, -1});
+  // Sorted as integers, (a + 1, b + 1, c + 1) packed into 21 bits each: the same order
+  // as the triples' (ids are below 2^21 - 1), at a fraction of the comparisons' cost.
+  auto pack = [](int a, int b, int c) {
+    return (std::uint64_t(a + 1) << 42) | (std::uint64_t(b + 1) << 21) | std::uint64_t(c + 1);
+  };
+  thread_local std::vector<std::uint64_t> packed;
+  packed.clear();
+  for (int a = 0; a < n_vertices; ++a) packed.push_back(pack(a, -1, -1));
   for (std::array<int, 3> t : facets) {
     std::sort(t.begin(), t.end());
     if (t[0] == t[1] || t[1] == t[2]) continue;
-    keys->push_back(t);
-    for (const std::array<int, 3>& e : {std::array<int, 3>{t[0], t[1], -1}, std::array<int, 3>{t[0], t[2], -1},
-                                        std::array<int, 3>{t[1], t[2], -1}, std::array<int, 3>{t[0], -1, -1},
-                                        std::array<int, 3>{t[1], -1, -1}, std::array<int, 3>{t[2], -1, -1}})
-      keys->push_back(e);
+    for (const std::uint64_t key : {pack(t[0], t[1], t[2]), pack(t[0], t[1], -1), pack(t[0], t[2], -1),
+                                    pack(t[1], t[2], -1), pack(t[0], -1, -1), pack(t[1], -1, -1),
+                                    pack(t[2], -1, -1)})
+      packed.push_back(key);
   }
-  std::sort(keys->begin(), keys->end());
-  keys->erase(std::unique(keys->begin(), keys->end()), keys->end());
+  std::sort(packed.begin(), packed.end());
+  packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
+  constexpr std::uint64_t kField = (std::uint64_t(1) << 21) - 1;
+  keys->clear();
+  for (const std::uint64_t key : packed)
+    keys->push_back({static_cast<int>(key >> 42) - 1, static_cast<int>((key >> 21) & kField) - 1,
+                     static_cast<int>(key & kField) - 1});
 }
 
 }  // namespace

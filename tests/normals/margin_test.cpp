@@ -6,6 +6,8 @@
 // the hull (most_visible_on_hull) against most_visible_by_enumeration.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <string>
@@ -113,6 +115,39 @@ TEST(BestMargin, NonFiniteNormalsSkipTheHull) {
   EXPECT_FALSE(detail::normal_hull_facets(g.data(), 4, &facets));
   EXPECT_TRUE(detail::normal_hull_facets(f.data(), 4, &facets));  // the four finite ones
   EXPECT_EQ(facets.size(), 4u);
+}
+
+// The hull's triangles close a convex surface around every normal, wound outwards: each
+// normal lies on or below each triangle's plane, and every edge is shared by exactly two
+// triangles, in opposite directions. Points in general position and CAD-like clusters.
+TEST(NormalHull, TrianglesCloseTheHullWoundOutwards) {
+  std::mt19937 rng(31);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<Vec3> f;
+    const int k = 5 + trial;
+    for (int i = 0; i < k; ++i) {
+      Vec3 x{gauss(rng), gauss(rng), gauss(rng)};
+      if (trial % 2 == 1) x = Vec3{0.0, 0.0, 1.0} + 1e-3 * x;  // a cluster, as a fan face's normals
+      f.push_back(normalized(x));
+    }
+    std::vector<std::array<int, 3>> facets;
+    ASSERT_TRUE(detail::normal_hull_facets(f.data(), k, &facets)) << "trial " << trial;
+    std::vector<std::array<int, 2>> edges;
+    for (const auto& [a, b, c] : facets) {
+      const Vec3 out = cross(f[b] - f[a], f[c] - f[a]);
+      for (const Vec3& x : f) EXPECT_LE(dot(out, x - f[a]), 1e-12 * norm(out)) << "trial " << trial;
+      edges.push_back({a, b});
+      edges.push_back({b, c});
+      edges.push_back({c, a});
+    }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      EXPECT_TRUE(e == 0 || edges[e] != edges[e - 1]) << "trial " << trial << ": an edge used twice one way";
+      EXPECT_TRUE(std::binary_search(edges.begin(), edges.end(), std::array<int, 2>{edges[e][1], edges[e][0]}))
+          << "trial " << trial << ": an edge without its twin";
+    }
+  }
 }
 
 // The face normals of CAD-like fans of valence 12 to 60 (thin fan triangles: many nearly
