@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include <tbb/parallel_for.h>
 
@@ -15,6 +16,7 @@
 #include "blayer/extruder/layer_assembly.h"
 #include "blayer/extruder/layer_cells.h"
 #include "blayer/extruder/layer_steps.h"
+#include "blayer/extruder/proximity_rays.h"
 #include "blayer/extruder/step_directions.h"
 #include "blayer/extruder/wall_planes.h"
 #include "blayer/extruder/wall_topology.h"
@@ -185,10 +187,12 @@ struct FanFailures {
 // One marching run on a column layout (fan_layout.h). Returns without a mesh when fan
 // points fail (*fan_failures): on straight columns before marching, or, with
 // stop_at_failed_fans, in layer 0.
+// wall_tree: the run's, built once for all attempts; freed here when the march
+// delivers its mesh, before the output arrays that set the peak memory.
 ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
                       const WallTopology& topo, const ExtrusionParams& params,
                       const std::function<void(int, int)>& progress, bool stop_at_failed_fans,
-                      FanFailures* fan_failures) {
+                      std::unique_ptr<WallTree>* wall_tree, FanFailures* fan_failures) {
   const Stopwatch total;
   ExtrusionResult res;
   ExtrusionReport& rep = res.report;
@@ -196,17 +200,21 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   rep.n_wall_points = static_cast<int>(wall.points.size());
   rep.n_wall_triangles = static_cast<int>(wall.triangles.size());
 
-  // Setup: wall directions, checker trees, column plan.
+  // Setup: wall directions, column plan, and the checker once the fans passed the
+  // precheck (a failing round needs no checker).
   Stopwatch phase;
   const WallPlanes planes(wall, layout, topo);
   const TriSurface& start = layout.front;
   StepDirections dirs = wall_directions(wall, wall_topo, layout, topo, planes, params);
-  FrontChecker checker(wall, layout, topo, params);
-  ColumnPlan plan = plan_column_heights(wall, wall_topo, topo, rep.growth, params, dirs, checker.wall_rays());
+  ColumnPlan plan = plan_column_heights(
+      wall, wall_topo, topo, rep.growth, params, dirs,
+      wall_proximity_rays(wall.triangles, wall.points, **wall_tree, &start.triangles, &layout.wall_point, topo.plane,
+                          &topo.on_plane));
   if (layout.has_fans()) {
     fan_failures->precheck = fan_points_failing_straight_layers(wall, layout, planes, dirs, plan, params);
     if (!fan_failures->precheck.empty()) return res;
   }
+  FrontChecker checker(wall, layout, topo, params, wall_tree->get());
   ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
   LayerAssembler assembler(wall, layout, dirs);
   assembler.reserve_layers(rep.growth.layers);
@@ -262,6 +270,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   // The marching state is no longer needed; freeing it here keeps it out of the peak
   // memory, which is reached while the output arrays are filled.
   checker.release();
+  wall_tree->reset();
 
   phase.restart();
   res.mesh = assembler.finish(columns);
@@ -303,8 +312,10 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   const WallTopology wall_topo = build_wall_topology(wall, params.symmetry);
   if (!(params.fan_angle_deg > 0.0)) {
     FanFailures none;
+    auto wall_tree = std::make_unique<WallTree>(wall);
     const double t_before = total.seconds();
-    ExtrusionResult res = march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &none);
+    ExtrusionResult res =
+        march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &wall_tree, &none);
     res.report.t_setup += t_before;
     res.report.t_total = total.seconds();
     return res;
@@ -314,6 +325,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   const FanParams fp{params.fan_angle_deg, params.fan_max_sector_deg};
   std::vector<char> excluded = wall_topo.on_plane;
   int n_fallback = 0, precheck_rounds = 0;
+  auto wall_tree = std::make_unique<WallTree>(wall);
   for (int attempt = 0;; ++attempt) {
     const ColumnLayout layout = build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded);
     const WallTopology column_topo = build_column_topology(layout, params.symmetry);
@@ -322,7 +334,8 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     const double t_before = total.seconds();
     FanFailures failures;
     const bool last_attempt = attempt + 1 >= kMaxFanAttempts;
-    ExtrusionResult res = march(wall, wall_topo, layout, column_topo, params, progress, !last_attempt, &failures);
+    ExtrusionResult res =
+        march(wall, wall_topo, layout, column_topo, params, progress, !last_attempt, &wall_tree, &failures);
     std::vector<int>& precheck = failures.precheck;
     if (!precheck.empty()) {
       // Each round rebuilds the layout and its directions: when most fans fail, or

@@ -70,22 +70,14 @@ Vec3 layer_cell_centre(const LayerCellFaces& c, FaceGeometry* geo) {
   return cell_geometry(geo, c.n).centre;
 }
 
-void unit_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& P, std::vector<Vec3>* out) {
-  out->resize(tris.size());
-  tbb::parallel_for(0, static_cast<int>(tris.size()), [&](int i) {
-    const Triangle& t = tris[i];
-    (*out)[i] = normalized(cross(P[t[1]] - P[t[0]], P[t[2]] - P[t[0]]));
-  });
-}
-
 }  // namespace
 
 FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params)
     : FrontChecker(wall, single_column_layout(wall), topo, params) {}
 
 FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
-                           const ExtrusionParams& params)
-    : FrontChecker(wall, layout, topo, params.check_collisions) {
+                           const ExtrusionParams& params, const WallTree* wall_tree)
+    : FrontChecker(wall, layout, topo, params.check_collisions, wall_tree) {
   if (!params.solver_limits.any()) return;
   // The acceptance passes judge the cells of the wall triangles, which are the first
   // front triangles, on their columns (fan_layout.h's contract).
@@ -158,7 +150,7 @@ FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, boo
     : FrontChecker(wall, single_column_layout(wall), topo, check_collisions) {}
 
 FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
-                           bool check_collisions)
+                           bool check_collisions, const WallTree* wall_tree)
     : triangles_(&wall.triangles),
       front_(layout.front.triangles),
       elements_(layout.elements),
@@ -173,15 +165,13 @@ FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, c
       nt_(static_cast<int>(layout.front.triangles.size())),
       ne_(static_cast<int>(layout.elements.size())),
       check_collisions_(check_collisions) {
-  std::vector<Box> wall_boxes(nf_);
-  tbb::parallel_for(0, nf_, [&](int f) {
-    const Triangle& t = wall.triangles[f];
-    wall_boxes[f] = Box::of_triangle(wall.points[t[0]], wall.points[t[1]], wall.points[t[2]]);
-  });
-  wall_tree_.build(wall_boxes);
-  unit_normals(wall.triangles, wall.points, &wall_normal_);
+  if (!wall_tree) {
+    own_wall_ = std::make_unique<WallTree>(wall);
+    wall_tree = own_wall_.get();
+  }
+  wall_ = wall_tree;
   if (nt_ == nf_ && front_ == wall.triangles) {
-    cur_tree_ = wall_tree_;
+    cur_tree_ = wall_->tree;
   } else {
     std::vector<Box> front_boxes(nt_);
     const std::vector<Vec3>& P = layout.front.points;
@@ -215,18 +205,7 @@ FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, c
 }
 
 ProximityRays FrontChecker::wall_rays() const {
-  ProximityRays r;
-  r.triangles = triangles_;
-  r.front_triangles = &front_;
-  r.wall_point = &wall_point_;
-  r.wall_points = wall_points_;
-  r.wall_tree = &wall_tree_;
-  r.wall_normal = &wall_normal_;
-  if (plane_) {
-    r.plane = &*plane_;
-    r.on_plane = &on_plane_;
-  }
-  return r;
+  return wall_proximity_rays(*triangles_, *wall_points_, *wall_, &front_, &wall_point_, plane_, &on_plane_);
 }
 
 ProximityRays FrontChecker::front_rays() const {
@@ -249,7 +228,7 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
       cur_boxes_[f] = Box::of_triangle(top[t[0]], top[t[1]], top[t[2]]);
     });
     cur_tree_.refit(cur_boxes_);
-    unit_normals(front_, top, &cur_normal_);
+    unit_triangle_normals(front_, top, &cur_normal_);
   }
   if (check_collisions_) {
     std::copy(top.begin(), top.end(), soup_.begin() + nv_);
@@ -403,7 +382,7 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   // itself for the pairs with a queried triangle, each pair once.
   new_tree_.mark_nodes(query_, &query_nodes_);
   auto hit = [&](int f) { crossing_.local().push_back(f); };
-  new_tree_.for_each_overlapping_pair(query_, query_nodes_, wall_tree_, [&](int f, int j) {
+  new_tree_.for_each_overlapping_pair(query_, query_nodes_, wall_->tree, [&](int f, int j) {
     if (soup_triangles_intersect(soup_, new_tris_[f], wall_tris_[j])) hit(f);
   });
   if (k_ > 0)
@@ -492,7 +471,8 @@ void FrontChecker::release() {
   release(cur_boxes_);
   release(new_boxes_);
   release(cur_normal_);
-  release(wall_tree_);
+  own_wall_.reset();
+  wall_ = nullptr;
   release(cur_tree_);
   release(new_tree_);
   release(prev_next_);

@@ -1,9 +1,48 @@
 #include "blayer/extruder/proximity_rays.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
 namespace blayer {
+
+void unit_triangle_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& points,
+                           std::vector<Vec3>* out) {
+  out->resize(tris.size());
+  tbb::parallel_for(0, static_cast<int>(tris.size()), [&](int i) {
+    const Triangle& t = tris[i];
+    (*out)[i] = normalized(cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]));
+  });
+}
+
+WallTree::WallTree(const TriSurface& wall) {
+  const int n = static_cast<int>(wall.triangles.size());
+  std::vector<Box> boxes(n);
+  tbb::parallel_for(0, n, [&](int f) {
+    const Triangle& t = wall.triangles[f];
+    boxes[f] = Box::of_triangle(wall.points[t[0]], wall.points[t[1]], wall.points[t[2]]);
+  });
+  tree.build(boxes);
+  unit_triangle_normals(wall.triangles, wall.points, &normal);
+}
+
+ProximityRays wall_proximity_rays(const std::vector<Triangle>& triangles, const std::vector<Vec3>& points,
+                                  const WallTree& tree, const std::vector<Triangle>* front_triangles, const std::vector<int>* wall_point,
+                                  const std::optional<SymmetryPlane>& plane, const std::vector<char>* on_plane) {
+  ProximityRays r;
+  r.triangles = &triangles;
+  r.front_triangles = front_triangles;
+  r.wall_point = wall_point;
+  r.wall_points = &points;
+  r.wall_tree = &tree.tree;
+  r.wall_normal = &tree.normal;
+  if (plane) {
+    r.plane = &*plane;
+    r.on_plane = on_plane;
+  }
+  return r;
+}
 
 double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_max) const {
   double best = HUGE_VAL;

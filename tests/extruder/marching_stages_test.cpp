@@ -243,6 +243,29 @@ TEST(FrontChecker, FlagsANewFrontThatCrossesTheOtherWall) {
   EXPECT_EQ(v.reason[centre], StopReason::kCollision);
 }
 
+// The run's wall tree, shared by the fan attempts: a checker borrowing it finds the
+// crossing that only the wall's triangles can reveal (the upper plate does not grow),
+// and releasing the checker leaves the tree to its owner.
+TEST(FrontChecker, ABorrowedWallTreeFindsTheCrossingAndOutlivesTheChecker) {
+  const TriSurface wall = facing_plates(0.5);
+  const WallTree shared(wall);
+  FrontChecker checker(wall, single_column_layout(wall), build_wall_topology(wall), true, &shared);
+  std::vector<Vec3> top = wall.points, next = wall.points;
+  std::vector<int> layers(top.size(), 0);
+  std::vector<char> grows(top.size(), 0);
+  const int centre = 2 * 5 + 2;
+  grows[centre] = 1;
+  next[centre][2] = 0.8;
+  checker.begin_layer(0, top, layers);
+  FrontVerdict v;
+  checker.check(0, top, next, grows, &v);
+  EXPECT_TRUE(v.bad[centre]);
+  EXPECT_EQ(v.reason[centre], StopReason::kCollision);
+  checker.release();
+  const ProximityRays rays = wall_proximity_rays(wall.triangles, wall.points, shared);
+  EXPECT_DOUBLE_EQ(rays.first_hit(centre, wall.points[centre], {0.0, 0.0, 1.0}, 1.0), 0.5);
+}
+
 TEST(LayerSteps, StepsReachThePlannedHeightAboveTheWallPlanes) {
   const TriSurface wall = test::icosphere(2, 1.0);
   const WallTopology topo = build_wall_topology(wall);

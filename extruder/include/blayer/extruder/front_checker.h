@@ -56,6 +56,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -84,14 +85,16 @@ class FrontChecker {
   // must lie strictly on the model's side of it (a collision otherwise); points of the
   // columns on it lie in it by construction. No solver-acceptance limits.
   FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions);
-  // The columns of a layout (topo = build_column_topology(layout)).
-  FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo, bool check_collisions);
+  // The columns of a layout (topo = build_column_topology(layout)). wall_tree: the
+  // run's, borrowed and to outlive the checker (null: the checker builds its own).
+  FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo, bool check_collisions,
+               const WallTree* wall_tree = nullptr);
   // params.check_collisions and params.solver_limits. With fans the limits judge the
   // wall triangles' cells; fan strips, corner patches and the cells split at ridge ends
   // are checked exactly only (see the header comment).
   FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params);
   FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
-               const ExtrusionParams& params);
+               const ExtrusionParams& params, const WallTree* wall_tree = nullptr);
 
   // The wall alone, for the wall-gap cap before marching.
   ProximityRays wall_rays() const;
@@ -106,7 +109,8 @@ class FrontChecker {
   void check(int attempt, const std::vector<Vec3>& top, const std::vector<Vec3>& next, const std::vector<char>& grows,
              FrontVerdict* out);
 
-  // Frees the trees and the point soup (the marching state is not needed for output).
+  // Frees the trees it owns and the point soup (the marching state is not needed for
+  // output); a borrowed wall tree is its owner's to free.
   void release();
 
  private:
@@ -131,8 +135,10 @@ class FrontChecker {
   int nv_ = 0, nc_ = 0, nf_ = 0, nt_ = 0, ne_ = 0, k_ = 0;
   bool check_collisions_ = true;
 
-  TriangleBvh wall_tree_, cur_tree_, new_tree_;
-  std::vector<Vec3> wall_normal_, cur_normal_;
+  std::unique_ptr<WallTree> own_wall_;
+  const WallTree* wall_ = nullptr;  // own_wall_ or the run's
+  TriangleBvh cur_tree_, new_tree_;
+  std::vector<Vec3> cur_normal_;
   const std::vector<Vec3>* cur_points_ = nullptr;
   std::vector<Box> cur_boxes_, new_boxes_;
 

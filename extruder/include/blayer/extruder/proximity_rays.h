@@ -6,6 +6,7 @@
 // exact predicates decide validity and intersections elsewhere (front_checker.h).
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "blayer/core/ray_triangle.h"
@@ -40,5 +41,29 @@ struct ProximityRays {
   // from its fluid side), or to the symmetry plane for a column off it; +inf if none.
   double first_hit(int v, const Vec3& o, const Vec3& dir, double t_max) const;
 };
+
+// Unit normals of triangles (zero-area ones give NaN and face no ray).
+void unit_triangle_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& points,
+                           std::vector<Vec3>* out);
+
+// The wall's tree and unit triangle normals. They depend on the wall alone, so one
+// serves a whole run: the wall-gap cap of every fan attempt and the checker's wall
+// side (front_checker.h).
+struct WallTree {
+  TriangleBvh tree;
+  std::vector<Vec3> normal;
+
+  explicit WallTree(const TriSurface& wall);
+};
+
+// The wall-only view of a wall (its triangles and points) over its tree.
+// front_triangles and wall_point: a column layout's (null: one column per wall point);
+// plane and on_plane: a half model's.
+ProximityRays wall_proximity_rays(const std::vector<Triangle>& triangles, const std::vector<Vec3>& points,
+                                  const WallTree& tree,
+                                  const std::vector<Triangle>* front_triangles = nullptr,
+                                  const std::vector<int>* wall_point = nullptr,
+                                  const std::optional<SymmetryPlane>& plane = std::nullopt,
+                                  const std::vector<char>* on_plane = nullptr);
 
 }  // namespace blayer
