@@ -129,6 +129,12 @@ void SiteSubdivision::unconstrained_candidates() {
   refine_roots();
 }
 
+void SiteSubdivision::leaves_only() {
+  offer_subsets_ = false;
+  unconstrained_candidates();
+  offer_subsets_ = true;
+}
+
 void SiteSubdivision::unconstrained_candidates_near(const Vec3& centre, double radius) {
   Chart ch;
   ch.e0 = centre;
@@ -222,7 +228,7 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   if (n_sites <= kLeafSites || rho < kMinRadius || (n_sites <= kSmallLeaf && stable >= kStableLevels) ||
       (n_sites <= kSmallLeaf && rho < kSmallLeafRadius)) {
     record_leaf(cell, d, v, own_faces, own_end);
-    enumerate_new_subsets();
+    if (offer_subsets_) enumerate_new_subsets();
   } else {
     const double half = 0.5 * cell.size;
     for (double dx : {0.0, half})

@@ -77,6 +77,10 @@ class SiteSubdivision {
   // Refines the whole sphere (six cube faces) and offers every leaf's 1-, 2- and 3-site
   // candidates.
   void unconstrained_candidates();
+  // The same leaves without offering their candidates, for a fan whose candidates an
+  // enumeration of all its sites has offered already: the constraint-circle and plateau
+  // passes need the leaves only.
+  void leaves_only();
   // The same within the cap B(centre, radius) alone (radius < pi/2), for callers that
   // have proved that every candidate that can still become a maximiser lies there.
   void unconstrained_candidates_near(const Vec3& centre, double radius);
@@ -160,6 +164,7 @@ class SiteSubdivision {
   RecycledVector<std::uint64_t> subset_table_;
   std::size_t subset_count_ = 0;
   int n_points_ = 0;
+  bool offer_subsets_ = true;
   SubdivisionStats stats_;
 };
 
