@@ -196,7 +196,7 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
     // The constraint circles are searched leaf by leaf: a small fan gets its leaves now,
     // without their candidates, which the enumeration offered already (re-offering them
     // cost a quarter of a constrained valence-4 solve on the perforated block).
-    if (!subdivided) subdivision().leaves_only();
+    if (!subdivided) subdivision().constraint_leaves();
     subdivision().constraint_circles();
   }
   *n_cells = lazy ? lazy->stats().cells : 0;

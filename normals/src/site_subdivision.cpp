@@ -129,7 +129,7 @@ void SiteSubdivision::unconstrained_candidates() {
   refine_roots();
 }
 
-void SiteSubdivision::leaves_only() {
+void SiteSubdivision::constraint_leaves() {
   offer_subsets_ = false;
   unconstrained_candidates();
   offer_subsets_ = true;
@@ -200,7 +200,9 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   const double d_high = d + rho + kBoundMargin;
   if (d_high < pool_.threshold()) return;
   const bool maybe_feasible = !pool_.constrained() || v + rho + kBoundMargin >= pool_.v_min() - kConstraintSlack;
-  if (!maybe_feasible && d_high < pool_.unconstrained_threshold()) return;
+  // A cell invisible below V_min all over holds no candidate of the constraint circles
+  // (docs/normals.md): when only those are sought, it is dropped whatever its D.
+  if (!maybe_feasible && (!offer_subsets_ || d_high < pool_.unconstrained_threshold())) return;
   if (d > rho + kBoundMargin) {
     // No arc meets the cap: the whole cell lies on the side of its centre.
     const bool fluid = interior ? cf > 0.0 : fluid_at_vertex(g_, vertex, c);

@@ -77,10 +77,10 @@ class SiteSubdivision {
   // Refines the whole sphere (six cube faces) and offers every leaf's 1-, 2- and 3-site
   // candidates.
   void unconstrained_candidates();
-  // The same leaves without offering their candidates, for a fan whose candidates an
-  // enumeration of all its sites has offered already: the constraint-circle and plateau
-  // passes need the leaves only.
-  void leaves_only();
+  // The leaves the constraint-circle pass needs, without offering their candidates, for
+  // a fan whose candidates an enumeration of all its sites has offered already: the
+  // same refinement, but cells that are infeasible all over are dropped at once.
+  void constraint_leaves();
   // The same within the cap B(centre, radius) alone (radius < pi/2), for callers that
   // have proved that every candidate that can still become a maximiser lies there.
   void unconstrained_candidates_near(const Vec3& centre, double radius);
