@@ -187,6 +187,16 @@ void CandidatePool::consider(Vec3 n) {
 }
 
 bool CandidatePool::distinct(const std::vector<Maximizer>& maxima) {
+  // Against the first one: a pair farther than the limit settles it, and when all lie
+  // within half of it (less the angles' rounding) no pair can exceed it. Symmetric fans
+  // gather thousands of maximisers at one point, where the pairwise loop would not end.
+  bool near_all = true;
+  for (std::size_t b = 1; b < maxima.size(); ++b) {
+    const double a0b = angle_between(maxima[0].n, maxima[b].n);
+    if (a0b > kDistinctMaximizers) return true;
+    near_all = near_all && a0b <= 0.5 * kDistinctMaximizers - kHalfLimitRounding;
+  }
+  if (near_all) return false;
   for (std::size_t a = 0; a < maxima.size(); ++a)
     for (std::size_t b = a + 1; b < maxima.size(); ++b)
       if (angle_between(maxima[a].n, maxima[b].n) > kDistinctMaximizers) return true;

@@ -25,6 +25,10 @@ namespace detail {
 // separates real ties from rounding with a wide margin on both sides.
 constexpr double kDistinctMaximizers = 1e-6;
 
+// Rounding allowance of the angles compared by the distinctness test's triangle
+// inequality (angle_between is accurate to a few ulps of pi).
+constexpr double kHalfLimitRounding = 1e-14;
+
 // Slack on V >= V_min for candidates constructed on a constraint circle n.f_i = V_min:
 // their computed V carries ~1e-16 rounding, 1e-12 accepts them without admitting any
 // meaningfully invisible direction.

@@ -40,21 +40,19 @@ constexpr double kCapSupportSlack = 1e-10;
 // its maximiser. Near n0 g is the minimum of the concave angles to the vertices u_j at
 // the bound (all beyond pi/2), so it lies below its tangent cone, whose slowest slope is
 // cos(phi/2) for the widest angular gap phi between the projected u_j at n0 (0 when a
-// gap reaches pi: flat to first order).
-double cap_falloff(const FanGeometry& g, const MostVisibleResult& cap) {
+// gap reaches pi: flat to first order). *n_support receives the number of those u_j.
+double cap_falloff(const FanGeometry& g, const MostVisibleResult& cap, int* n_support = nullptr) {
   const Vec3 n0 = -cap.normal;
   Vec3 e1, e2;
   detail::orthonormal_complement(n0, &e1, &e2);
-  constexpr int kMaxSupport = 16;
-  double az[kMaxSupport];
-  int m = 0;
+  thread_local std::vector<double> az;
+  az.clear();
   for (const Vec3& u : g.dirs)
-    if (dot(cap.normal, u) <= cap.visibility + kCapSupportSlack) {
-      if (m == kMaxSupport) return 0.0;
-      az[m++] = std::atan2(dot(u, e2), dot(u, e1));
-    }
+    if (dot(cap.normal, u) <= cap.visibility + kCapSupportSlack) az.push_back(std::atan2(dot(u, e2), dot(u, e1)));
+  const int m = static_cast<int>(az.size());
+  if (n_support) *n_support = m;
   if (m < 3) return 0.0;
-  std::sort(az, az + m);
+  std::sort(az.begin(), az.end());
   double widest = az[0] + 2.0 * M_PI - az[m - 1];
   for (int i = 1; i < m; ++i) widest = std::max(widest, az[i] - az[i - 1]);
   return widest >= M_PI ? 0.0 : std::cos(0.5 * widest);
@@ -134,6 +132,26 @@ bool cap_bound_shortcut(const FanGeometry& g, const FanSites& sites, const Toler
 // faster from 13 on).
 constexpr int kMaxEnumeratedSites = 12;
 
+// A cap held by more link vertices than this is a symmetric configuration (a cone
+// apex, the pole of a body of revolution): every triple of them builds the same
+// antipode, so the generators' candidates number C(m, 3) for a single point (a
+// valence-96 pole took minutes). Up to 8 (56 triples) the generators still build it,
+// which keeps the answers of smaller symmetric caps bit for bit (structured grids hold
+// caps of 4).
+constexpr int kManySupports = 8;
+
+// Whether the cap antipode, at D = d, is the optimum by the link-vertex bound
+// (cap_bound_shortcut's test) on a cap held by more than kManySupports vertices.
+bool bound_reached_by_many(const FanGeometry& g, const FanSites& sites, const MostVisibleResult& cap, double d,
+                           const Tolerances& tol) {
+  int n_support = 0;
+  const double falloff = cap_falloff(g, cap, &n_support);
+  if (n_support <= kManySupports || !(sites.all_reflex || falloff >= kSharpFalloff)) return false;
+  const double target =
+      M_PI - std::atan2(std::sqrt(std::max(0.0, 1.0 - cap.visibility * cap.visibility)), cap.visibility);
+  return d >= target - tol.normality_tie;
+}
+
 // The candidate passes of the default solver; *n_cells reports the subdivision's work.
 bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerances& tol, CandidatePool* pool,
                     int* n_cells) {
@@ -163,12 +181,20 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
   double radius = -1.0;
   if (capped) {
     // The antipode is a lower bound only: when it is the optimum its generators build it
-    // exactly, and the rounding of the cap must not enter the tie-break.
+    // exactly, and the rounding of the cap must not enter the tie-break. Except on a cap
+    // held by many link vertices, where the bound certifies the antipode and building it
+    // from its generators would take every triple of them.
     double d;
     bool fluid;
     if (pool->evaluate(-cap.normal, -std::numeric_limits<double>::infinity(), &d, &fluid) && fluid &&
-        (!pool->constrained() || fan_visibility(g, -cap.normal) >= pool->v_min() - detail::kConstraintSlack))
+        (!pool->constrained() || fan_visibility(g, -cap.normal) >= pool->v_min() - detail::kConstraintSlack)) {
       pool->raise_floor(-cap.normal, d);
+      if (bound_reached_by_many(g, sites, cap, d, tol)) {
+        pool->consider(-cap.normal);
+        *n_cells = 0;
+        return false;
+      }
+    }
     const double thr = pool->threshold();
     if (thr > 0.5 * M_PI + kLensThresholdMargin)
       radius = detail::link_vertex_lens_radius(g.dirs, -cap.normal, thr, kMaxLensRadius);

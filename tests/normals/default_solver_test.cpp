@@ -5,6 +5,7 @@
 // with and without the visibility constraint (agreement rule: agreement.h).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -108,6 +109,35 @@ TEST(AgreementRule, PointBesideAPlateauIsNotGenuine) {
   const Vec3 off_plateau = normalized(Vec3{std::cos(0.3), 1e-3, std::sin(0.3)});
   EXPECT_FALSE(testing_fans::genuine_maximizer(t4, off_plateau));
   EXPECT_TRUE(testing_fans::genuine_maximizer(t4, normalized(Vec3{std::cos(0.3), 0.0, std::sin(0.3)})));
+}
+
+// The pole of a body of revolution: every link vertex holds the cap of the link
+// vertices, so every triple of them builds the optimum and the generators' candidates
+// number C(k, 3) (a valence-96 pole used to take minutes). The link-vertex bound
+// certifies the cap antipode instead: D* = 90 deg + atan(h) for a pole h above its rim
+// (the angle from the axis to every link vertex).
+TEST(DefaultMostNormal, PoleOfARevolvedBodyIsAnsweredByTheLinkVertexBound) {
+  std::mt19937 rng(96);
+  for (int k : {24, 96}) {
+    const double h = 0.05;
+    std::vector<Vec3> ring;
+    for (int j = 0; j < k; ++j) ring.push_back({std::cos(2.0 * M_PI * j / k), std::sin(2.0 * M_PI * j / k), -h});
+    Vec3 q[3];
+    testing_fans::random_rotation(rng, q);
+    for (Vec3& r : ring) r = testing_fans::rotate(r, q);
+    const Vec3 axis = testing_fans::rotate({0.0, 0.0, 1.0}, q);
+    const FanGeometry g = testing_fans::geometry(ring);
+    const std::string what = "valence " + std::to_string(k);
+    for (bool constrained : {true, false}) {
+      const MostNormalResult r = most_normal_normal(g, default_tolerances(), constrained);
+      EXPECT_EQ(r.status, NormalStatus::kOk) << what;
+      EXPECT_LE(angle_between(r.normal, axis), 1e-12) << what;
+      EXPECT_NEAR(r.normality, 0.5 * M_PI + std::atan(h), 1e-12) << what;
+      EXPECT_EQ(r.n_cells, 0) << what << ": no subdivision";
+      EXPECT_LE(r.n_candidates, 3) << what << ": no generator triples";
+    }
+    if (k == 24) expect_same(g, what);
+  }
 }
 
 }  // namespace
