@@ -5,6 +5,9 @@
 //                            wing-skin vertices with mesh jitter; 12-60: CAD-like fans,
 //                            tests/normals/cad_fans.h, with offsets of 1e-5 and 1e-3 of
 //                            the edge length)
+//   Poles/<solver>/<k>       poles of bodies of revolution of valence k (every ring
+//                            point at one elevation), exact and with the ring moved by
+//                            1e-12, 1e-7 and 1e-5 of its radius
 //   Mesh/<solver>/<surface>/<wall|front>
 //                            every closed vertex of the surface, and of its first offset
 //                            front (bench/normals/front_march.h)
@@ -19,6 +22,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <string>
@@ -75,6 +79,21 @@ std::vector<FanGeometry> fans_of_valence(int k) {
   return fans;
 }
 
+std::vector<FanGeometry> poles_of_valence(int k) {
+  std::vector<FanGeometry> fans;
+  std::mt19937 rng(96u + static_cast<unsigned>(k));
+  std::normal_distribution<double> nd;
+  for (double offset : {0.0, 1e-12, 1e-7, 1e-5})
+    for (int t = 0; t < 4; ++t) {
+      std::vector<Vec3> ring;
+      for (int j = 0; j < k; ++j)
+        ring.push_back(Vec3{std::cos(2.0 * M_PI * j / k), std::sin(2.0 * M_PI * j / k), -0.05} +
+                       offset * Vec3{nd(rng), nd(rng), nd(rng)});
+      fans.push_back(testing_fans::geometry(ring));
+    }
+  return fans;
+}
+
 double longest_vertex_us(Solver solver, const std::vector<FanGeometry>& fans) {
   double worst = 0.0;
   for (const FanGeometry& g : fans) {
@@ -89,8 +108,8 @@ double longest_vertex_us(Solver solver, const std::vector<FanGeometry>& fans) {
   return worst;
 }
 
-void by_valence(benchmark::State& state, Solver solver, int k) {
-  const std::vector<FanGeometry> fans = fans_of_valence(k);
+void by_valence(benchmark::State& state, Solver solver, int k, bool poles) {
+  const std::vector<FanGeometry> fans = poles ? poles_of_valence(k) : fans_of_valence(k);
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(solve(solver, fans[i]));
@@ -125,8 +144,12 @@ int main(int argc, char** argv) {
     for (Solver s : {Solver::kDefault, Solver::kPruned, Solver::kEnumeration}) {
       if (s == Solver::kEnumeration && k > 20) continue;
       benchmark::RegisterBenchmark(("ByValence/" + std::string(solver_name(s)) + "/" + std::to_string(k)).c_str(),
-                                   by_valence, s, k);
+                                   by_valence, s, k, false);
     }
+  for (int k : {16, 32, 64, 96})
+    for (Solver s : {Solver::kDefault, Solver::kPruned})
+      benchmark::RegisterBenchmark(("Poles/" + std::string(solver_name(s)) + "/" + std::to_string(k)).c_str(),
+                                   by_valence, s, k, true);
   // Surfaces given after the benchmark flags; their fans live until the run ends.
   std::vector<std::vector<FanGeometry>*> keep;
   for (int i = 1; i < argc; ++i) {

@@ -384,7 +384,9 @@ MostVisibleResult most_visible_normal(const Vec3* f, int k, const Tolerances& to
     case WolfeOutcome::kNoVisibleDirection: return best_margin_direction(f, k);
     case WolfeOutcome::kUncertified: break;
   }
-  return most_visible_by_enumeration(f, k, tol);
+  // Symmetric fans (a pole of valence 96: every face normal at one elevation) leave
+  // Wolfe's iteration uncertified; the enumeration would try C(k, 3) supports.
+  return most_visible_on_hull(f, k, tol);
 }
 
 }  // namespace blayer
