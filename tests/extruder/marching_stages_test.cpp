@@ -227,20 +227,27 @@ TEST(FrontChecker, IncrementalAttemptsGiveTheVerdictOfAFreshCheck) {
   EXPECT_EQ(second.bad_triangle, fresh.bad_triangle);
 }
 
-TEST(FrontChecker, FlagsANewFrontThatCrossesTheOtherWall) {
-  const TriSurface wall = facing_plates(0.5);
-  FrontChecker checker(wall, build_wall_topology(wall), true);
+// Lower plate centre of facing_plates(0.5), pushed through the upper plate alone.
+constexpr int kPlateCentre = 2 * 5 + 2;
+
+FrontVerdict push_plate_centre_through_the_other(const TriSurface& wall, FrontChecker* checker) {
   std::vector<Vec3> top = wall.points, next = wall.points;
   std::vector<int> layers(top.size(), 0);
   std::vector<char> grows(top.size(), 0);
-  const int centre = 2 * 5 + 2;  // lower plate centre: pushed through the upper plate
-  grows[centre] = 1;
-  next[centre][2] = 0.8;
-  checker.begin_layer(0, top, layers);
+  grows[kPlateCentre] = 1;
+  next[kPlateCentre][2] = 0.8;
+  checker->begin_layer(0, top, layers);
   FrontVerdict v;
-  checker.check(0, top, next, grows, &v);
-  EXPECT_TRUE(v.bad[centre]);
-  EXPECT_EQ(v.reason[centre], StopReason::kCollision);
+  checker->check(0, top, next, grows, &v);
+  return v;
+}
+
+TEST(FrontChecker, FlagsANewFrontThatCrossesTheOtherWall) {
+  const TriSurface wall = facing_plates(0.5);
+  FrontChecker checker(wall, build_wall_topology(wall), true);
+  const FrontVerdict v = push_plate_centre_through_the_other(wall, &checker);
+  EXPECT_TRUE(v.bad[kPlateCentre]);
+  EXPECT_EQ(v.reason[kPlateCentre], StopReason::kCollision);
 }
 
 // The run's wall tree, shared by the fan attempts: a checker borrowing it finds the
@@ -250,20 +257,12 @@ TEST(FrontChecker, ABorrowedWallTreeFindsTheCrossingAndOutlivesTheChecker) {
   const TriSurface wall = facing_plates(0.5);
   const WallTree shared(wall);
   FrontChecker checker(wall, single_column_layout(wall), build_wall_topology(wall), true, &shared);
-  std::vector<Vec3> top = wall.points, next = wall.points;
-  std::vector<int> layers(top.size(), 0);
-  std::vector<char> grows(top.size(), 0);
-  const int centre = 2 * 5 + 2;
-  grows[centre] = 1;
-  next[centre][2] = 0.8;
-  checker.begin_layer(0, top, layers);
-  FrontVerdict v;
-  checker.check(0, top, next, grows, &v);
-  EXPECT_TRUE(v.bad[centre]);
-  EXPECT_EQ(v.reason[centre], StopReason::kCollision);
+  const FrontVerdict v = push_plate_centre_through_the_other(wall, &checker);
+  EXPECT_TRUE(v.bad[kPlateCentre]);
+  EXPECT_EQ(v.reason[kPlateCentre], StopReason::kCollision);
   checker.release();
   const ProximityRays rays = wall_proximity_rays(wall.triangles, wall.points, shared);
-  EXPECT_DOUBLE_EQ(rays.first_hit(centre, wall.points[centre], {0.0, 0.0, 1.0}, 1.0), 0.5);
+  EXPECT_DOUBLE_EQ(rays.first_hit(kPlateCentre, wall.points[kPlateCentre], {0.0, 0.0, 1.0}, 1.0), 0.5);
 }
 
 TEST(LayerSteps, StepsReachThePlannedHeightAboveTheWallPlanes) {
