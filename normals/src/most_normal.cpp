@@ -40,8 +40,8 @@ constexpr double kCapSupportSlack = 1e-10;
 // its maximiser. Near n0 g is the minimum of the concave angles to the vertices u_j at
 // the bound (all beyond pi/2), so it lies below its tangent cone, whose slowest slope is
 // cos(phi/2) for the widest angular gap phi between the projected u_j at n0 (0 when a
-// gap reaches pi: flat to first order). *n_support receives the number of those u_j.
-double cap_falloff(const FanGeometry& g, const MostVisibleResult& cap, int* n_support = nullptr) {
+// gap reaches pi: flat to first order).
+double cap_falloff(const FanGeometry& g, const MostVisibleResult& cap) {
   const Vec3 n0 = -cap.normal;
   Vec3 e1, e2;
   detail::orthonormal_complement(n0, &e1, &e2);
@@ -50,12 +50,25 @@ double cap_falloff(const FanGeometry& g, const MostVisibleResult& cap, int* n_su
   for (const Vec3& u : g.dirs)
     if (dot(cap.normal, u) <= cap.visibility + kCapSupportSlack) az.push_back(std::atan2(dot(u, e2), dot(u, e1)));
   const int m = static_cast<int>(az.size());
-  if (n_support) *n_support = m;
   if (m < 3) return 0.0;
   std::sort(az.begin(), az.end());
   double widest = az[0] + 2.0 * M_PI - az[m - 1];
   for (int i = 1; i < m; ++i) widest = std::max(widest, az[i] - az[i - 1]);
   return widest >= M_PI ? 0.0 : std::cos(0.5 * widest);
+}
+
+// The link-vertex bound: pi minus the radius of the cap holding the link vertices, the
+// largest D any direction can reach (reached only at the cap antipode).
+double link_vertex_bound(const MostVisibleResult& cap) {
+  return M_PI - std::atan2(std::sqrt(std::max(0.0, 1.0 - cap.visibility * cap.visibility)), cap.visibility);
+}
+
+// Beyond convex corners the bound is used only where D falls off steeply around the
+// optimum, so that no distinct direction comes within the tie band. Where it is flat
+// (two link vertices hold the cap: second order along their bisector) the other
+// candidates may hold distinct near-ties, to be broken by V.
+bool bound_is_sharp(const FanGeometry& g, const FanSites& sites, const MostVisibleResult& cap) {
+  return sites.all_reflex || cap_falloff(g, cap) >= kSharpFalloff;
 }
 
 // The link-vertex bound region is used when the threshold exceeds pi/2 by this (its
@@ -104,14 +117,9 @@ bool cap_bound_shortcut(const FanGeometry& g, const FanSites& sites, const Toler
                         MostNormalResult* out) {
   const MostVisibleResult cap = most_visible_normal(g.dirs.data(), g.n_faces(), tol);
   if (!cap.feasible) return false;
-  const double target =
-      M_PI - std::atan2(std::sqrt(std::max(0.0, 1.0 - cap.visibility * cap.visibility)), cap.visibility);
+  const double target = link_vertex_bound(cap);
   pool->consider(-cap.normal);
-  // Beyond convex corners the bound is used only where D falls off steeply around the
-  // optimum, so that no distinct direction comes within the tie band. Where it is flat
-  // (two link vertices hold the cap: second order along their bisector) the other
-  // candidates may hold distinct near-ties, to be broken by V.
-  const bool sharp = sites.all_reflex || cap_falloff(g, cap) >= kSharpFalloff;
+  const bool sharp = bound_is_sharp(g, sites, cap);
   const double tie = tol.normality_tie;
   if (!(sharp && pool->best_constrained() >= target - tie &&
         pool->best_unconstrained() <= pool->best_constrained() + tie && pool->has_maximizer()))
@@ -144,12 +152,11 @@ constexpr int kManySupports = 8;
 // (cap_bound_shortcut's test) on a cap held by more than kManySupports vertices.
 bool bound_reached_by_many(const FanGeometry& g, const FanSites& sites, const MostVisibleResult& cap, double d,
                            const Tolerances& tol) {
+  // Counted first: most caps are held by two or three vertices, and the fall-off sorts.
   int n_support = 0;
-  const double falloff = cap_falloff(g, cap, &n_support);
-  if (n_support <= kManySupports || !(sites.all_reflex || falloff >= kSharpFalloff)) return false;
-  const double target =
-      M_PI - std::atan2(std::sqrt(std::max(0.0, 1.0 - cap.visibility * cap.visibility)), cap.visibility);
-  return d >= target - tol.normality_tie;
+  for (const Vec3& u : g.dirs) n_support += dot(cap.normal, u) <= cap.visibility + kCapSupportSlack;
+  return n_support > kManySupports && d >= link_vertex_bound(cap) - tol.normality_tie &&
+         bound_is_sharp(g, sites, cap);
 }
 
 // The candidate passes of the default solver; *n_cells reports the subdivision's work.
