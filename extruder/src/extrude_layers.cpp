@@ -310,9 +310,9 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   check_extrusion_params(params);
   check_wall(wall);
   const WallTopology wall_topo = build_wall_topology(wall, params.symmetry);
+  auto wall_tree = std::make_unique<WallTree>(wall);  // for every attempt of the run
   if (!(params.fan_angle_deg > 0.0)) {
     FanFailures none;
-    auto wall_tree = std::make_unique<WallTree>(wall);
     const double t_before = total.seconds();
     ExtrusionResult res =
         march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &wall_tree, &none);
@@ -325,7 +325,6 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   const FanParams fp{params.fan_angle_deg, params.fan_max_sector_deg};
   std::vector<char> excluded = wall_topo.on_plane;
   int n_fallback = 0, precheck_rounds = 0;
-  auto wall_tree = std::make_unique<WallTree>(wall);
   for (int attempt = 0;; ++attempt) {
     const ColumnLayout layout = build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded);
     const WallTopology column_topo = build_column_topology(layout, params.symmetry);
