@@ -41,14 +41,15 @@ constexpr double kCapSupportSlack = 1e-10;
 // the bound (all beyond pi/2), so it lies below its tangent cone, whose slowest slope is
 // cos(phi/2) for the widest angular gap phi between the projected u_j at n0 (0 when a
 // gap reaches pi: flat to first order).
-double cap_falloff(const FanGeometry& g, const MostVisibleResult& cap) {
+// The vertices counted are those within `slack` (in cosine) of the cap.
+double cap_falloff(const FanGeometry& g, const MostVisibleResult& cap, double slack = kCapSupportSlack) {
   const Vec3 n0 = -cap.normal;
   Vec3 e1, e2;
   detail::orthonormal_complement(n0, &e1, &e2);
   thread_local std::vector<double> az;
   az.clear();
   for (const Vec3& u : g.dirs)
-    if (dot(cap.normal, u) <= cap.visibility + kCapSupportSlack) az.push_back(std::atan2(dot(u, e2), dot(u, e1)));
+    if (dot(cap.normal, u) <= cap.visibility + slack) az.push_back(std::atan2(dot(u, e2), dot(u, e1)));
   const int m = static_cast<int>(az.size());
   if (m < 3) return 0.0;
   std::sort(az.begin(), az.end());
@@ -148,15 +149,38 @@ constexpr int kMaxEnumeratedSites = 12;
 // caps of 4).
 constexpr int kManySupports = 8;
 
-// Whether the cap antipode, at D = d, is the optimum by the link-vertex bound
-// (cap_bound_shortcut's test) on a cap held by more than kManySupports vertices.
+// Link vertices within this (in cosine) of the cap count as nearly holding it: the ring
+// of a pole whose coordinates carry noise of up to about 1e-9 of its radius. Such a cap
+// is held exactly by two or three of them, but every triple of them builds a candidate
+// within the tie of the optimum (a valence-96 pole took 250 ms).
+constexpr double kNearSupportSlack = 1e-8;
+
+// Whether the cap antipode n0, at D = d, is the optimum by the link-vertex bound
+// (cap_bound_shortcut's test) on a cap held by more than kManySupports vertices; or, on
+// a cap nearly held by as many, the one distinct maximiser: for the vertices u_j within
+// kNearSupportSlack of the cap, each angle(n, u_j) is concave around n0 (all beyond
+// pi/2), so D(n) <= min_j angle(n, u_j) <= g - s |n - n0| with g = max_j angle(n0, u_j)
+// and s their fall-off (cap_falloff); a maximiser has D >= d - tie, so it lies within
+// (g - d + tie) / s of n0, required to be a tenth of kDistinctMaximizers.
 bool bound_reached_by_many(const FanGeometry& g, const FanSites& sites, const MostVisibleResult& cap, double d,
                            const Tolerances& tol) {
+  if (d < link_vertex_bound(cap) - tol.normality_tie) return false;
   // Counted first: most caps are held by two or three vertices, and the fall-off sorts.
-  int n_support = 0;
-  for (const Vec3& u : g.dirs) n_support += dot(cap.normal, u) <= cap.visibility + kCapSupportSlack;
-  return n_support > kManySupports && d >= link_vertex_bound(cap) - tol.normality_tie &&
-         bound_is_sharp(g, sites, cap);
+  int n_support = 0, n_near = 0;
+  double cos_widest = 1.0;  // cosine of the largest angle from n0 to the near vertices
+  for (const Vec3& u : g.dirs) {
+    const double c = dot(cap.normal, u);
+    n_support += c <= cap.visibility + kCapSupportSlack;
+    if (c <= cap.visibility + kNearSupportSlack) {
+      ++n_near;
+      cos_widest = std::min(cos_widest, -c);
+    }
+  }
+  if (n_support > kManySupports && bound_is_sharp(g, sites, cap)) return true;
+  if (n_near <= kManySupports) return false;
+  const double falloff = cap_falloff(g, cap, kNearSupportSlack);
+  const double g_near = std::acos(std::max(-1.0, cos_widest));
+  return falloff > 0.0 && g_near - d + tol.normality_tie <= 0.1 * detail::kDistinctMaximizers * falloff;
 }
 
 // The candidate passes of the default solver; *n_cells reports the subdivision's work.
