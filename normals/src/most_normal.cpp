@@ -199,10 +199,10 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
   Tolerances cap_tol = tol;
   cap_tol.min_visibility = kLensCapMargin;
   MostVisibleResult cap;
-  // Near-flat CAD fans whose link vertices fit in a hemisphere by a hair often leave
-  // Wolfe's iteration uncertified: the supports on the hull of the link vertices then
-  // give the cap (the enumeration's answer in O(k^2)), which keeps the search in the lens
-  // instead of the whole sphere (on one sliver fan, 189 cells against 8162).
+  // Where Wolfe's iteration stays uncertified the supports on the hull of the link
+  // vertices give the cap (the enumeration's answer in O(k^2)), which keeps the search in
+  // the lens instead of the whole sphere (on one near-flat sliver fan, 189 cells against
+  // 8162).
   const WolfeOutcome outcome = wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap);
   bool capped = outcome == WolfeOutcome::kCertified && cap.feasible;
   if (outcome == WolfeOutcome::kUncertified) {

@@ -57,7 +57,8 @@ MostVisibleResult best_margin_direction_by_enumeration(const Vec3* f, int k);
 // Wolfe's algorithm alone: kCertified with the certified min-norm point in *out (whose
 // evaluated V may still fall below tol.min_visibility by rounding: out->feasible), or
 // kNoVisibleDirection (V* below tol.min_visibility, or 0 in conv{f_i}), or kUncertified
-// (a singular affine hull from rounding, or no convergence within its step limit),
+// (no convergence within its step limit, or only singular faces where a new point is
+// affinely dependent on the support),
 // leaving *out unspecified. most_visible_normal is this plus its fallbacks, whose cost
 // grows as k^4; callers that only profit from a certified answer skip them.
 enum class WolfeOutcome { kCertified, kNoVisibleDirection, kUncertified };
