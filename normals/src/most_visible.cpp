@@ -76,14 +76,15 @@ bool affine_min_norm(const Vec3* const* pts, int m, double* alpha) {
   return true;
 }
 
-// Wolfe's step when the support s[0..2] and the new point j are affinely dependent (the
-// nearly coplanar normals of a pole): the min-norm point of their tetrahedron, which
-// does not contain the origin, lies on a face through j (the one through s[0..2] holds
-// the current point, which j improves on): the triangles {j, a, b}, the edges {j, a} or j
-// itself, whichever has the smallest norm with positive weights. Writes the new support
-// and weights; false when no face gives one (singular faces only).
+// Wolfe's step when the support s[0..n-1] (n = 2 or 3) and the new point j are affinely
+// dependent (the nearly coplanar normals of a pole, nearly collinear ones): the
+// min-norm point of their hull, which does not contain the origin, lies on a face
+// through j (the face s[0..n-1] holds the current point, which j improves on): the
+// triangles {j, a, b}, the edges {j, a} or j itself, whichever has the smallest norm
+// with positive weights. Writes the new support and weights; false when no face gives
+// one (singular faces only).
 // Cold and out of line: kept out of Wolfe's loop, which it slowed by 13 % when inlined.
-[[gnu::cold, gnu::noinline]] bool min_norm_face_through(const Vec3* f, const int* s, int j, int* s_out,
+[[gnu::cold, gnu::noinline]] bool min_norm_face_through(const Vec3* f, const int* s, int n, int j, int* s_out,
                                                          double* w_out, int* m_out) {
   double best = std::numeric_limits<double>::infinity();
   auto consider = [&](std::initializer_list<int> face) {
@@ -111,9 +112,9 @@ bool affine_min_norm(const Vec3* const* pts, int m, double* alpha) {
     }
   };
   consider({j});
-  for (int a = 0; a < 3; ++a) consider({j, s[a]});
-  for (int a = 0; a < 3; ++a)
-    for (int b = a + 1; b < 3; ++b) consider({j, s[a], s[b]});
+  for (int a = 0; a < n; ++a) consider({j, s[a]});
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) consider({j, s[a], s[b]});
   return best < std::numeric_limits<double>::infinity();
 }
 
@@ -378,16 +379,18 @@ WolfeOutcome wolfe_min_norm_point(const Vec3* f, int k, const Tolerances& tol, M
     s[m] = j;
     w[m] = 0.0;
     ++m;
-    for (;;) {
+    for (bool just_added = true;; just_added = false) {
       const Vec3* pts[4];
       for (int i = 0; i < m; ++i) pts[i] = &f[s[i]];
       double alpha[4];
       if (!affine_min_norm(pts, m, alpha)) {
-        if (m < 4) return WolfeOutcome::kUncertified;
+        // Right after adding the new point s[m - 1] to a support of two or three: the
+        // face through it. Anything else stays uncertified (for the hull).
+        if (!just_added || m < 3) return WolfeOutcome::kUncertified;
         int face[3];
         double weights[3];
         int n = 0;
-        if (!min_norm_face_through(f, s, s[3], face, weights, &n)) return WolfeOutcome::kUncertified;
+        if (!min_norm_face_through(f, s, m - 1, s[m - 1], face, weights, &n)) return WolfeOutcome::kUncertified;
         for (int i = 0; i < 4; ++i) {
           s[i] = i < n ? face[i] : 0;
           w[i] = i < n ? weights[i] : 0.0;
