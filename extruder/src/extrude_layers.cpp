@@ -54,7 +54,7 @@ constexpr int kMaxPrecheckRounds = 3;
     Vec3 corners[8];
     const int n = corner_count(m.cell_types[c]);
     for (int i = 0; i < n; ++i) corners[i] = m.points[m.connectivity[m.offsets[c] + i]];
-    if (cell_validity(m.cell_types[c], corners) != Validity::kValid) return false;
+    if (!cell_is_valid(m.cell_types[c], corners)) return false;
   }
   return true;
 }
@@ -139,7 +139,7 @@ std::vector<int> fan_points_failing_straight_layers(const TriSurface& wall, cons
           const std::int64_t id = cells[q].nodes[j];
           corners[j] = id < nv ? wall.points[id] : id < nv + nc ? base[id - nv] : up[id - nv - nc];
         }
-        if (cell_validity(cells[q].type, corners) != Validity::kValid) {
+        if (!cell_is_valid(cells[q].type, corners)) {
           bad[x] = 1;
           return;
         }

@@ -7,7 +7,6 @@
 
 #include "blayer/core/assert.h"
 #include "blayer/core/edge_topology.h"
-#include "blayer/extruder/filtered_orient3d.h"
 #include "blayer/extruder/layer_cells.h"
 #include "blayer/quality/cell_validity.h"
 #include "blayer/quality/solver_acceptance.h"
@@ -16,18 +15,6 @@
 namespace blayer {
 
 namespace {
-
-// Same verdict as cell_validity(type, corners) == Validity::kValid (every validity tet
-// strictly positive), with the inlined filtered predicate.
-bool cell_is_valid(CellType type, const Vec3* corners) {
-  std::size_t n = 0;
-  const std::array<int, 4>* tets = validity_tets(type, &n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::array<int, 4>& t = tets[i];
-    if (detail::orient3d_filtered(corners[t[0]], corners[t[1]], corners[t[2]], corners[t[3]]) <= 0) return false;
-  }
-  return true;
-}
 
 // The faces of triangle t's cell in one layer, each oriented out of the cell: [0] the
 // bottom (the front triangle seen from below), [1] the top, then the side face over

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "blayer/extruder/triangle_bvh.h"
-#include "blayer/extruder/filtered_orient3d.h"
+#include "blayer/quality/filtered_orient3d.h"
 
 namespace blayer {
 

@@ -30,7 +30,7 @@ Vec3 cap_apex(const std::array<Vec3, 4>& q, const std::array<std::int64_t, 4>& i
   for (int attempt = 0; attempt < 5; ++attempt, d *= 0.5) {
     const Vec3 apex = centre + d * normal;
     const Vec3 corners[5] = {q[0], q[1], q[2], q[3], apex};
-    if (cell_validity(CellType::kPyramid, corners) == Validity::kValid) return apex;
+    if (cell_is_valid(CellType::kPyramid, corners)) return apex;
   }
   throw std::runtime_error("fill: no valid pyramid caps the envelope quad (" + std::to_string(ids[0]) + ", " +
                            std::to_string(ids[1]) + ", " + std::to_string(ids[2]) + ", " + std::to_string(ids[3]) +

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "blayer/quality/orient3d.h"
+#include "blayer/quality/filtered_orient3d.h"
 
 namespace blayer {
 
@@ -104,7 +104,7 @@ Validity cell_validity(CellType type, const Vec3* corners) {
   // The corner tets come first, so every corner is decided before any split tet.
   for (std::size_t i = 0; i < n; ++i) {
     const std::array<int, 4>& t = tets[i];
-    const int s = orient3d_sign(corners[t[0]], corners[t[1]], corners[t[2]], corners[t[3]]);
+    const int s = detail::orient3d_filtered(corners[t[0]], corners[t[1]], corners[t[2]], corners[t[3]]);
     if (i < n_corner) {
       if (s < 0) return Validity::kInverted;
       if (s == 0) flat = true;
@@ -116,8 +116,16 @@ Validity cell_validity(CellType type, const Vec3* corners) {
   return split_fails ? Validity::kTwisted : Validity::kValid;
 }
 
-bool prism_is_valid(const Vec3 corners[6]) {
-  return cell_validity(CellType::kWedge, corners) == Validity::kValid;
+bool cell_is_valid(CellType type, const Vec3* corners) {
+  std::size_t n = 0;
+  const std::array<int, 4>* tets = validity_tets(type, &n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::array<int, 4>& t = tets[i];
+    if (detail::orient3d_filtered(corners[t[0]], corners[t[1]], corners[t[2]], corners[t[3]]) <= 0) return false;
+  }
+  return true;
 }
+
+bool prism_is_valid(const Vec3 corners[6]) { return cell_is_valid(CellType::kWedge, corners); }
 
 }  // namespace blayer

@@ -1,4 +1,4 @@
-#include "blayer/extruder/filtered_orient3d.h"
+#include "blayer/quality/filtered_orient3d.h"
 
 #include <gtest/gtest.h>
 

@@ -35,16 +35,18 @@ int double_sign(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   return det > 0 ? 1 : (det < 0 ? -1 : 0);
 }
 
-// Classifies with a given sign function over the wedge's validity tets: the six corner
-// tets decide inverted (one negative) and flat (one zero), the six split tets twisted.
+// Classifies with a given sign function over the cell's validity tets: the corner tets
+// decide inverted (one negative) and flat (one zero), the split tets twisted.
 template <typename Sign>
-Validity classify(const std::vector<Vec3>& p, Sign sign) {
+Validity classify(const std::vector<Vec3>& p, Sign sign, CellType type = CellType::kWedge) {
   std::size_t n = 0;
-  const std::array<int, 4>* tets = validity_tets(CellType::kWedge, &n);
+  const std::array<int, 4>* tets = validity_tets(type, &n);
+  const std::size_t n_corner = corner_tet_count(type);
   int corner_min = 1, split_min = 1;
   for (std::size_t i = 0; i < n; ++i) {
     const int s = sign(p[tets[i][0]], p[tets[i][1]], p[tets[i][2]], p[tets[i][3]]);
-    (i < 6 ? corner_min : split_min) = std::min(i < 6 ? corner_min : split_min, s);
+    int& m = i < n_corner ? corner_min : split_min;
+    m = std::min(m, s);
   }
   if (corner_min < 0) return Validity::kInverted;
   if (corner_min == 0) return Validity::kFlat;
@@ -103,6 +105,53 @@ TEST(NearDegeneratePrism, ExactPredicatesClassifyLatticePrismsWhereDoublesFail) 
   EXPECT_GT(by_class[1], 0);
   EXPECT_GT(by_class[2], 0);
   EXPECT_GT(double_wrong, 0);
+}
+
+TEST(NearDegenerateCells, LatticeCellsOfEveryTypeGetTheExactVerdict) {
+  // Each reference cell mapped onto a lattice: its (x, y) on two random edges of size
+  // ~2^21 on a base ~2^40 from the origin, its height z lifted along a shear inside
+  // that plane (so the top lies in the wall plane), then moved off it by one lattice
+  // step of -1, 0 or +1 per coordinate, shared by the upper nodes (an affine image of
+  // the cell: valid, flat or inverted as a whole), in every other trial plus a step of
+  // each node's own (twisted cells, mixed verdicts). Integer coordinates keep the
+  // 128-bit oracle exact; the verdicts hang on single lattice steps.
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<std::int64_t> base(0, std::int64_t{1} << 40);
+  std::uniform_int_distribution<std::int64_t> edge(-(std::int64_t{1} << 20), std::int64_t{1} << 20);
+  std::uniform_int_distribution<std::int64_t> shear(-(std::int64_t{1} << 19), std::int64_t{1} << 19);
+  std::uniform_int_distribution<int> nudge(-1, 1);
+  const std::pair<CellType, std::vector<Vec3>> cells[] = {{CellType::kTet, test::unit_tet()},
+                                                          {CellType::kPyramid, test::unit_pyramid()},
+                                                          {CellType::kWedge, test::right_prism()},
+                                                          {CellType::kHex, test::unit_hex()}};
+  for (const auto& [type, ref] : cells) {
+    int by_class[4] = {0, 0, 0, 0};
+    for (int trial = 0; trial < 2000; ++trial) {
+      std::int64_t a[3], p[3], q[3];
+      for (int i = 0; i < 3; ++i) a[i] = base(rng), p[i] = 2 * edge(rng), q[i] = 2 * edge(rng);  // even: the apex at 1/2
+      const std::int64_t s = shear(rng), t = shear(rng);
+      const std::int64_t shared[3] = {nudge(rng), nudge(rng), nudge(rng)};
+      std::vector<Vec3> cell(ref.size());
+      for (std::size_t k = 0; k < ref.size(); ++k) {
+        const Vec3& r = ref[k];
+        for (int i = 0; i < 3; ++i) {
+          const auto x = static_cast<std::int64_t>(r[0] * static_cast<double>(p[i]) + r[1] * static_cast<double>(q[i]));
+          const std::int64_t own = trial % 2 ? nudge(rng) : 0;
+          const std::int64_t up = r[2] > 0.0 ? s * p[i] + t * q[i] + shared[i] + own : 0;
+          cell[k][i] = static_cast<double>(a[i] + x + up);
+        }
+      }
+      const Validity exact = classify(cell, exact_sign, type);
+      ASSERT_EQ(cell_validity(type, cell.data()), exact) << "type " << static_cast<int>(type) << " trial " << trial;
+      ASSERT_EQ(cell_is_valid(type, cell.data()), exact == Validity::kValid)
+          << "type " << static_cast<int>(type) << " trial " << trial;
+      ++by_class[static_cast<int>(exact)];
+    }
+    // Meaningful only if the lattice steps produce valid, flat and inverted cells.
+    EXPECT_GT(by_class[static_cast<int>(Validity::kValid)], 0) << static_cast<int>(type);
+    EXPECT_GT(by_class[static_cast<int>(Validity::kFlat)], 0) << static_cast<int>(type);
+    EXPECT_GT(by_class[static_cast<int>(Validity::kInverted)], 0) << static_cast<int>(type);
+  }
 }
 
 }  // namespace

@@ -42,7 +42,9 @@
 //           not. Every affine image of a cube passes. blayer writes hexes on fan
 //           strips (extruder/layer_cells.h).
 //
-// Exactness: orient3d_sign is exact, so the result is exact for the given doubles:
+// Exactness: each sign is orient3d_sign's (filtered_orient3d.h decides the clear cases
+// in floating point and passes the rest to the exact predicate), so the result is exact
+// for the given doubles:
 // a prism of relative height 1e-12 is decided correctly and the same on every machine.
 #pragma once
 
@@ -59,6 +61,11 @@ enum class Validity { kValid = 0, kFlat = 1, kInverted = 2, kTwisted = 3 };
 
 // corners: corner_count(type) points in VTK order.
 Validity cell_validity(CellType type, const Vec3* corners);
+
+// cell_validity(type, corners) == Validity::kValid, stopping at the first tet that is
+// not strictly positive: the test of the extruder's loops, where most cells are valid
+// and a failing one needs no diagnosis.
+bool cell_is_valid(CellType type, const Vec3* corners);
 
 // A prism in VTK wedge order: (0,1,2) is the cap whose right-hand normal points away
 // from (3,4,5); 0-3, 1-4, 2-5 are the column edges. Valid iff all 12 wedge validity

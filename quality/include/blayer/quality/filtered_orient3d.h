@@ -1,7 +1,7 @@
-// An inlined floating-point filter in front of the exact orient3d_sign, for the extruder's
-// hot loops (the per-layer front intersection check and cell validity check make
-// hundreds of orientation tests per triangle; the out-of-line exact predicate, with its
-// point conversions, dominated their cost).
+// An inlined floating-point filter in front of the exact orient3d_sign, for the hot
+// loops: cell_validity (12 to 24 orientations per cell, run on every cell of every layer
+// and of the final check) and the extruder's per-layer front intersection test. The
+// out-of-line exact predicate, with its point conversions, dominated their cost.
 //
 // The determinant is evaluated exactly as in Shewchuk's orient3d (differences against
 // the fourth point, then the 3x3 expansion). His proven bound on the rounding error of
