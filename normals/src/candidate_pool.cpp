@@ -12,6 +12,13 @@ namespace {
 // only when the exact arctangent comparison would as well): a few ulps of values <= 1.
 constexpr double kCheapTestMargin = 1e-15;
 
+// Arcs whose rounded distance cosine is below the largest one by more than this are not
+// compared exactly in evaluate(): the cosines are dot products and norms of unit vectors,
+// off by a few ulps, and an angle gap is at least the cosine gap, so such an arc is
+// farther than the nearest one by about 1e-12 radians, a thousand times what the exact
+// comparison of the arctangent pairs can resolve.
+constexpr double kNearestCosineMargin = 1e-12;
+
 }  // namespace
 
 VertexTangents vertex_tangents(const FanGeometry& g, int j, const Vec3& n) {
@@ -78,7 +85,8 @@ bool CandidatePool::evaluate(const Vec3& n, double thr, double* d_out, bool* flu
     } else {
       // Nearest point an end: d = min angle to u, v, decreasing in the cosines.
       at.kind = ArcTest::kEnds;
-      if (std::max(dot(n, u), dot(n, v)) > cos_thr_) {
+      at.cosd = std::max(dot(n, u), dot(n, v));
+      if (at.cosd > cos_thr_) {
         last_reject_ = i;
         return false;
       }
@@ -88,7 +96,20 @@ bool CandidatePool::evaluate(const Vec3& n, double thr, double* d_out, bool* flu
   // angle atan2(y, x) with y >= 0, so the nearest arc is found by comparing the pairs
   // (sign of y1 x2 - x1 y2, exact to rounding for angles in [0, pi] except 0 against
   // pi, where it vanishes) and only its angle needs an arctangent; ties keep the first
-  // arc, and an arc's start before its end.
+  // arc, and an arc's start before its end. Only the arcs whose rounded cosine is within
+  // kNearestCosineMargin of the largest can be the nearest: the others are left out of
+  // the comparison (its cross products and square roots), which then picks the same arc.
+  double cos_max = -2.0;
+  for (int i = 0; i < k; ++i) {
+    ArcTest& at = arc_tests_[i];
+    if (at.kind == ArcTest::kPole) {
+      at.cosd = 0.0;
+    } else if (at.kind == ArcTest::kInterior) {
+      at.cosd = std::sqrt(at.mm2);
+    }
+    cos_max = std::max(cos_max, at.cosd);
+  }
+  const double cos_near = cos_max - kNearestCosineMargin;
   auto nearer = [](double y1, double x1, double y2, double x2) {
     const double c = y1 * x2 - x1 * y2;
     return c < 0.0 || (c == 0.0 && y1 == 0.0 && y2 == 0.0 && x1 > x2);
@@ -98,6 +119,7 @@ bool CandidatePool::evaluate(const Vec3& n, double thr, double* d_out, bool* flu
   int feature_kind = 0;  // 0: arc interior or pole, 1: arc start, 2: arc end
   for (int i = 0; i < k; ++i) {
     const ArcTest& at = arc_tests_[i];
+    if (at.cosd < cos_near) continue;
     double y, x;
     int kind = 0;
     if (at.kind == ArcTest::kPole) {
@@ -105,7 +127,7 @@ bool CandidatePool::evaluate(const Vec3& n, double thr, double* d_out, bool* flu
       x = 0.0;
     } else if (at.kind == ArcTest::kInterior) {
       y = std::fabs(at.nf);
-      x = std::sqrt(at.mm2);
+      x = at.cosd;
     } else {
       const Vec3& u = g_.arc_start(i);
       const Vec3& v = g_.arc_end(i);

@@ -134,8 +134,9 @@ class CandidatePool {
   // threshold, and the arc that rejected the last candidate.
   struct ArcTest {
     enum Kind : char { kPole, kInterior, kEnds };
-    double nf;   // n.f
-    double mm2;  // |n - (n.f) f|^2
+    double nf;    // n.f
+    double mm2;   // |n - (n.f) f|^2
+    double cosd;  // cosine of the distance, as rounded: |m|, max(n.u, n.v), 0 at the pole
     Kind kind;
   };
   mutable RecycledVector<ArcTest> arc_tests_;

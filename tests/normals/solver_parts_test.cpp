@@ -1,10 +1,12 @@
 // The parts of the default most-normal solver on their own (white-box, normals/src):
+// the candidate pool evaluates D and the fluid side as the references do,
 // the subdivision over the whole sphere finds the enumeration's optimum on fans of every
 // size, the link-vertex lens holds every sampled direction of its superlevel set, and the
 // lower envelope of V along a plateau circle peaks as high as all pairwise crossings do.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <string>
@@ -18,6 +20,7 @@
 #include "fan_sites.h"
 #include "link_vertex_lens.h"
 #include "most_normal_enumeration.h"
+#include "oracle.h"
 #include "random_fans.h"
 #include "site_subdivision.h"
 #include "test_fans.h"
@@ -62,6 +65,48 @@ TEST(SiteSubdivision, ReachesTheEnumerationOptimumOnAnyFan) {
     }
   });
   EXPECT_GT(n, 900);
+}
+
+// The pool's exact D at a direction agrees with the reference distance to the link, and
+// its fluid side with the crossing-parity reference, on random directions and on the
+// directions where two features nearly tie: the bisectors of link-vertex pairs and of
+// arc pairs, exactly and moved off by 1e-13. evaluate() compares only the arcs whose
+// rounded cosine is near the largest; a wrong cut would return a farther arc's distance.
+TEST(CandidatePool, EvaluateGivesTheNearestFeatureAlsoWhereFeaturesNearlyTie) {
+  std::mt19937 rng(31);
+  std::normal_distribution<double> nd;
+  int n = 0, fluid_checked = 0;
+  for_each_random_fan(rng, 40, [&](const FanGeometry& g, const std::string& label) {
+    const oracle::Link link = oracle::make_link(g.dirs);
+    detail::CandidatePool pool(g, default_tolerances(), false, 0.0);
+    const int k = g.n_faces();
+    std::vector<Vec3> directions;
+    for (int t = 0; t < 20; ++t) directions.push_back(normalized(Vec3{nd(rng), nd(rng), nd(rng)}));
+    for (int a = 0; a < k; ++a)
+      for (int b = a + 1; b < k; ++b) {
+        directions.push_back(normalized(g.dirs[a] + g.dirs[b]));
+        directions.push_back(normalized(g.face_normals[a] + g.face_normals[b]));
+      }
+    const std::size_t n_exact = directions.size();
+    for (std::size_t i = 20; i < n_exact; ++i)
+      directions.push_back(normalized(directions[i] + 1e-13 * Vec3{nd(rng), nd(rng), nd(rng)}));
+    for (const Vec3& x : directions) {
+      if (!(norm2(x) > 0.5)) continue;
+      double d = 0.0;
+      bool fluid = false;
+      ASSERT_TRUE(pool.evaluate(x, -std::numeric_limits<double>::infinity(), &d, &fluid)) << label;
+      ASSERT_NEAR(d, oracle::normality(link, x), 1e-12) << label;
+      ++n;
+      // The side is compared where it is clear-cut: D well above zero, so x is off the link.
+      const int reference = oracle::fluid(link, x);
+      if (d > 1e-6 && reference >= 0) {
+        EXPECT_EQ(fluid, reference == 1) << label;
+        ++fluid_checked;
+      }
+    }
+  });
+  EXPECT_GT(n, 10000);
+  EXPECT_GT(fluid_checked, n / 2);
 }
 
 // Every sampled direction with g(n) = min_j angle(n, u_j) >= thr lies within the lens
