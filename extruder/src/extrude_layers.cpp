@@ -4,8 +4,6 @@
 #include <cmath>
 #include <memory>
 
-#include <tbb/parallel_for.h>
-
 #include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
 #include "blayer/core/stopwatch.h"
@@ -14,13 +12,13 @@
 #include "blayer/extruder/column_state.h"
 #include "blayer/extruder/front_checker.h"
 #include "blayer/extruder/layer_assembly.h"
-#include "blayer/extruder/layer_cells.h"
 #include "blayer/extruder/layer_steps.h"
 #include "blayer/extruder/proximity_rays.h"
 #include "blayer/extruder/step_directions.h"
 #include "blayer/extruder/wall_planes.h"
 #include "blayer/extruder/wall_topology.h"
 #include "blayer/quality/cell_validity.h"
+#include "fan_precheck.h"
 
 namespace blayer {
 
@@ -85,81 +83,6 @@ StepDirections wall_directions(const TriSurface& wall, const WallTopology& wall_
   return compute_step_directions(layout.front, topo, topo.used, params, &fan);
 }
 
-// Fan points whose fan cells (strips, strip ends, corner patches, the triangles split
-// at ridge ends and the wall triangles on fan columns) fail the exact validity test on
-// straight columns at their planned heights, layer by layer: short ridge edges under
-// tall layers fold them. Found before marching, they fall back to one column without a
-// marching rerun.
-std::vector<int> fan_points_failing_straight_layers(const TriSurface& wall, const ColumnLayout& layout,
-                                                    const WallPlanes& planes, const StepDirections& dirs,
-                                                    const ColumnPlan& plan, const ExtrusionParams& params) {
-  const int nv = static_cast<int>(wall.points.size()), nc = layout.n_columns();
-  const std::size_t n_wall_elements = wall.triangles.size();
-  std::vector<std::size_t> checked;
-  for (std::size_t i = 0; i < layout.elements.size(); ++i) {
-    const LayerElement& e = layout.elements[i];
-    bool fan = i >= n_wall_elements || e.split_at >= 0;
-    for (int j = 0; j < 3 && !fan; ++j) fan = layout.in_fan[e.column[j]];
-    if (fan) checked.push_back(i);
-  }
-  std::vector<char> failed(nv, 0);
-  // A fan column without a usable direction stops on the wall, and its fan with it.
-  for (int c = 0; c < nc; ++c)
-    if (layout.in_fan[c] && !dirs.ok[c]) failed[layout.wall_point[c]] = 1;
-  // Column tops: ids nv + c (the layer's base) and nv + nc + c (one layer up).
-  std::vector<Vec3> base(nc), up(nc);
-  for (int c = 0; c < nc; ++c) base[c] = wall.points[layout.wall_point[c]];
-  for (int k = 0; k < plan.n_layers; ++k) {
-    std::vector<char> grows(nc, 0);
-    for (int c = 0; c < nc; ++c) {
-      if (!dirs.ok[c] || plan.planned_layers[c] <= k) continue;
-      const Vec3& p = wall.points[layout.wall_point[c]];
-      const double h = plan.cumulative(c, k);
-      up[c] = p + std::clamp(planes.step_to_height(c, p, dirs.n[c], h), h, params.max_step_stretch * h) * dirs.n[c];
-      grows[c] = 1;
-    }
-    // The elements are checked in parallel; the verdicts are merged in element order,
-    // so the failed set does not depend on the scheduling. An element whose fan points
-    // all failed already can add nothing.
-    std::vector<char> bad(checked.size(), 0);
-    tbb::parallel_for(std::size_t{0}, checked.size(), [&](std::size_t x) {
-      const LayerElement& e = layout.elements[checked[x]];
-      bool news = false;
-      for (int j = 0; j < e.n_columns() && !news; ++j)
-        news = layout.in_fan[e.column[j]] && !failed[layout.wall_point[e.column[j]]];
-      if (!news) return;
-      LayerCell cells[2];
-      const int n_cells = element_layer_cells(
-          e, [&](int c) -> std::int64_t { return k == 0 ? layout.wall_point[c] : nv + c; },
-          [&](int c) -> std::int64_t { return static_cast<std::int64_t>(nv) + nc + c; },
-          [&](int c) { return grows[c] != 0; }, cells);
-      for (int q = 0; q < n_cells; ++q) {
-        Vec3 corners[8];
-        for (int j = 0; j < corner_count(cells[q].type); ++j) {
-          const std::int64_t id = cells[q].nodes[j];
-          corners[j] = id < nv ? wall.points[id] : id < nv + nc ? base[id - nv] : up[id - nv - nc];
-        }
-        if (!cell_is_valid(cells[q].type, corners)) {
-          bad[x] = 1;
-          return;
-        }
-      }
-    });
-    for (std::size_t x = 0; x < checked.size(); ++x) {
-      if (!bad[x]) continue;
-      const LayerElement& e = layout.elements[checked[x]];
-      for (int j = 0; j < e.n_columns(); ++j)
-        if (layout.in_fan[e.column[j]]) failed[layout.wall_point[e.column[j]]] = 1;
-    }
-    for (int c = 0; c < nc; ++c)
-      if (grows[c]) base[c] = up[c];
-  }
-  std::vector<int> out;
-  for (int w = 0; w < nv; ++w)
-    if (failed[w]) out.push_back(w);
-  return out;
-}
-
 // Fan points none of whose columns grew a layer because a cell, a collision or the
 // visibility stopped them: they fall back to one column in the next attempt. Known
 // once layer 0 is committed (a column that grew no layer then never will).
@@ -188,11 +111,12 @@ struct FanFailures {
 // points fail (*fan_failures): on straight columns before marching, or, with
 // stop_at_failed_fans, in layer 0.
 // wall_tree: the run's, built once for all attempts; freed here when the march
-// delivers its mesh, before the output arrays that set the peak memory.
+// delivers its mesh, before the output arrays that set the peak memory. precheck: the
+// run's, which carries each round's verdicts to the next (fan_precheck.h).
 ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
                       const WallTopology& topo, const ExtrusionParams& params,
                       const std::function<void(int, int)>& progress, bool stop_at_failed_fans,
-                      std::unique_ptr<WallTree>* wall_tree, FanFailures* fan_failures) {
+                      std::unique_ptr<WallTree>* wall_tree, FanPrecheck* precheck, FanFailures* fan_failures) {
   const Stopwatch total;
   ExtrusionResult res;
   ExtrusionReport& rep = res.report;
@@ -210,9 +134,12 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
       wall, wall_topo, topo, rep.growth, params, dirs,
       wall_proximity_rays(wall.triangles, wall.points, **wall_tree, &start.triangles, &layout.wall_point, topo.plane,
                           &topo.on_plane));
-  if (layout.has_fans()) {
-    fan_failures->precheck = fan_points_failing_straight_layers(wall, layout, planes, dirs, plan, params);
-    if (!fan_failures->precheck.empty()) return res;
+  if (precheck) {
+    if (layout.has_fans()) {
+      fan_failures->precheck = precheck->failing_points(wall, layout, planes, dirs, plan, params);
+      if (!fan_failures->precheck.empty()) return res;
+    }
+    precheck->release();  // this attempt marches: its records would only add to the peak
   }
   FrontChecker checker(wall, layout, topo, params, wall_tree->get());
   ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
@@ -315,7 +242,8 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     FanFailures none;
     const double t_before = total.seconds();
     ExtrusionResult res =
-        march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &wall_tree, &none);
+        march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &wall_tree, nullptr,
+              &none);
     res.report.t_setup += t_before;
     res.report.t_total = total.seconds();
     return res;
@@ -325,6 +253,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   const FanParams fp{params.fan_angle_deg, params.fan_max_sector_deg};
   std::vector<char> excluded = wall_topo.on_plane;
   int n_fallback = 0, precheck_rounds = 0;
+  FanPrecheck fan_precheck;
   for (int attempt = 0;; ++attempt) {
     const ColumnLayout layout = build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded);
     const WallTopology column_topo = build_column_topology(layout, params.symmetry);
@@ -334,7 +263,8 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     FanFailures failures;
     const bool last_attempt = attempt + 1 >= kMaxFanAttempts;
     ExtrusionResult res =
-        march(wall, wall_topo, layout, column_topo, params, progress, !last_attempt, &wall_tree, &failures);
+        march(wall, wall_topo, layout, column_topo, params, progress, !last_attempt, &wall_tree,
+              &fan_precheck, &failures);
     std::vector<int>& precheck = failures.precheck;
     if (!precheck.empty()) {
       // Each round rebuilds the layout and its directions: when most fans fail, or

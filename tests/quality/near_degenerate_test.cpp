@@ -67,21 +67,33 @@ TEST(NearDegeneratePrism, RelativeHeightOneInTenToTheTwelveIsValidAndItsMirrorIn
   EXPECT_EQ(cell_validity(CellType::kWedge, down.data()), Validity::kInverted);
 }
 
+// Random integers for lattice cells: base points up to 2^40 from the origin, edges and
+// shears up to 2^20 and 2^19, single lattice steps.
+struct LatticeDraws {
+  explicit LatticeDraws(unsigned seed) : rng(seed) {}
+  std::int64_t base() { return within(0, 40); }
+  std::int64_t edge() { return within(-1, 20); }
+  std::int64_t shear() { return within(-1, 19); }
+  std::int64_t nudge() { return std::uniform_int_distribution<int>(-1, 1)(rng); }
+  // Uniform in [lo * 2^bits, 2^bits] (lo is 0 or -1).
+  std::int64_t within(int lo, int bits) {
+    const std::int64_t m = std::int64_t{1} << bits;
+    return std::uniform_int_distribution<std::int64_t>(lo * m, m)(rng);
+  }
+  std::mt19937_64 rng;
+};
+
 TEST(NearDegeneratePrism, ExactPredicatesClassifyLatticePrismsWhereDoublesFail) {
   // Caps of size ~2^20 sheared by ~2^39 along the wall plane and lifted off it by one
   // lattice step or not at all: relative heights near 1e-12 and below, with every
   // coordinate an exact integer so the true class is known from 128-bit arithmetic.
-  std::mt19937_64 rng(2024);
-  std::uniform_int_distribution<std::int64_t> base(0, std::int64_t{1} << 40);
-  std::uniform_int_distribution<std::int64_t> edge(-(std::int64_t{1} << 20), std::int64_t{1} << 20);
-  std::uniform_int_distribution<std::int64_t> shear(-(std::int64_t{1} << 19), std::int64_t{1} << 19);
-  std::uniform_int_distribution<int> nudge(-1, 1);
+  LatticeDraws draw(2024);
   int double_wrong = 0;
   int by_class[4] = {0, 0, 0, 0};
   for (int trial = 0; trial < 3000; ++trial) {
     std::int64_t a[3], p[3], q[3];
-    for (int i = 0; i < 3; ++i) a[i] = base(rng), p[i] = edge(rng), q[i] = edge(rng);
-    const std::int64_t s = shear(rng), t = shear(rng);
+    for (int i = 0; i < 3; ++i) a[i] = draw.base(), p[i] = draw.edge(), q[i] = draw.edge();
+    const std::int64_t s = draw.shear(), t = draw.shear();
     std::int64_t lift[3];
     for (int i = 0; i < 3; ++i) lift[i] = s * p[i] + t * q[i];
     // Wall triangle (a, a+p, a+q) written (a, c, b) as VTK wants, top nodes the
@@ -92,7 +104,7 @@ TEST(NearDegeneratePrism, ExactPredicatesClassifyLatticePrismsWhereDoublesFail) 
       for (int i = 0; i < 3; ++i) {
         const std::int64_t x = a[i] + (offsets[k] ? offsets[k][i] : 0);
         prism[k][i] = static_cast<double>(x);
-        prism[k + 3][i] = static_cast<double>(x + lift[i] + nudge(rng));
+        prism[k + 3][i] = static_cast<double>(x + lift[i] + draw.nudge());
       }
     const Validity exact = classify(prism, exact_sign);
     ASSERT_EQ(cell_validity(CellType::kWedge, prism.data()), exact) << "trial " << trial;
@@ -115,11 +127,7 @@ TEST(NearDegenerateCells, LatticeCellsOfEveryTypeGetTheExactVerdict) {
   // the cell: valid, flat or inverted as a whole), in every other trial plus a step of
   // each node's own (twisted cells, mixed verdicts). Integer coordinates keep the
   // 128-bit oracle exact; the verdicts hang on single lattice steps.
-  std::mt19937_64 rng(7);
-  std::uniform_int_distribution<std::int64_t> base(0, std::int64_t{1} << 40);
-  std::uniform_int_distribution<std::int64_t> edge(-(std::int64_t{1} << 20), std::int64_t{1} << 20);
-  std::uniform_int_distribution<std::int64_t> shear(-(std::int64_t{1} << 19), std::int64_t{1} << 19);
-  std::uniform_int_distribution<int> nudge(-1, 1);
+  LatticeDraws draw(7);
   const std::pair<CellType, std::vector<Vec3>> cells[] = {{CellType::kTet, test::unit_tet()},
                                                           {CellType::kPyramid, test::unit_pyramid()},
                                                           {CellType::kWedge, test::right_prism()},
@@ -128,15 +136,16 @@ TEST(NearDegenerateCells, LatticeCellsOfEveryTypeGetTheExactVerdict) {
     int by_class[4] = {0, 0, 0, 0};
     for (int trial = 0; trial < 2000; ++trial) {
       std::int64_t a[3], p[3], q[3];
-      for (int i = 0; i < 3; ++i) a[i] = base(rng), p[i] = 2 * edge(rng), q[i] = 2 * edge(rng);  // even: the apex at 1/2
-      const std::int64_t s = shear(rng), t = shear(rng);
-      const std::int64_t shared[3] = {nudge(rng), nudge(rng), nudge(rng)};
+      // Even edges: the pyramid's apex at (1/2, 1/2) stays on the lattice.
+      for (int i = 0; i < 3; ++i) a[i] = draw.base(), p[i] = 2 * draw.edge(), q[i] = 2 * draw.edge();
+      const std::int64_t s = draw.shear(), t = draw.shear();
+      const std::int64_t shared[3] = {draw.nudge(), draw.nudge(), draw.nudge()};
       std::vector<Vec3> cell(ref.size());
       for (std::size_t k = 0; k < ref.size(); ++k) {
         const Vec3& r = ref[k];
         for (int i = 0; i < 3; ++i) {
           const auto x = static_cast<std::int64_t>(r[0] * static_cast<double>(p[i]) + r[1] * static_cast<double>(q[i]));
-          const std::int64_t own = trial % 2 ? nudge(rng) : 0;
+          const std::int64_t own = trial % 2 ? draw.nudge() : 0;
           const std::int64_t up = r[2] > 0.0 ? s * p[i] + t * q[i] + shared[i] + own : 0;
           cell[k][i] = static_cast<double>(a[i] + x + up);
         }

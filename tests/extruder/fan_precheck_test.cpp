@@ -1,0 +1,96 @@
+// The straight-layer precheck of fan points (extruder/src/fan_precheck.h) reuses the
+// previous round's passes only where every column runs through the same points: its
+// failing set is always the one a fresh precheck finds.
+#include "fan_precheck.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "blayer/core/vertex_fans.h"
+#include "blayer/extruder/column_plan.h"
+#include "blayer/extruder/fan_layout.h"
+#include "blayer/extruder/wall_planes.h"
+#include "blayer/extruder/wall_topology.h"
+#include "test_surfaces.h"
+
+namespace blayer {
+namespace {
+
+struct BoxWithFans {
+  TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, 3);
+  ColumnLayout layout = build_column_layout(box, build_vertex_fans(box), FanParams{60.0, 30.0},
+                                            NormalMethod::kMostNormal, std::vector<char>(box.points.size(), 0));
+  WallTopology topo = build_column_topology(layout);
+  WallPlanes planes{box, layout, topo};
+  ExtrusionParams params;
+  ColumnPlan plan;
+
+  BoxWithFans() {
+    GrowthLaw law;
+    law.layers = 4;
+    law.first_height = 0.05;
+    law.growth_ratio = 1.5;
+    plan = plan_columns(resolve_growth_law(law), std::vector<double>(layout.n_columns(), 1.0));
+  }
+  // Fan columns along their sector directions, the others along their face's normal.
+  StepDirections directions() const {
+    const int nc = layout.n_columns();
+    StepDirections d;
+    d.n = layout.direction;
+    d.ok.assign(nc, 1);
+    for (std::size_t f = 0; f < box.triangles.size(); ++f)
+      for (int c : layout.front.triangles[f])
+        if (!layout.in_fan[c]) d.n[c] = normalized(triangle_area_vector(box, box.triangles[f]));
+    return d;
+  }
+  std::vector<int> fresh(const StepDirections& d) const {
+    FanPrecheck p;
+    return p.failing_points(box, layout, planes, d, plan, params);
+  }
+};
+
+TEST(FanPrecheck, ReusedPassesGiveTheFailingSetOfAFreshCheck) {
+  const BoxWithFans b;
+  ASSERT_TRUE(b.layout.has_fans());
+  const StepDirections straight = b.directions();
+  // One column beside an edge of the top face turned into the solid: the cells on it
+  // invert, and with them the fans of the edge points they touch.
+  StepDirections turned = straight;
+  int victim = -1;
+  for (int c = 0; c < b.layout.n_columns() && victim < 0; ++c) {
+    const Vec3& p = b.layout.front.points[c];
+    if (!b.layout.in_fan[c] && p[2] == 1.0 && p[0] < 0.5 && p[1] < 0.5) victim = c;
+  }
+  ASSERT_GE(victim, 0);
+  turned.n[victim] = Vec3{0.0, 0.0, -1.0};
+
+  FanPrecheck rounds;
+  const std::vector<int> first = rounds.failing_points(b.box, b.layout, b.planes, straight, b.plan, b.params);
+  EXPECT_TRUE(first.empty()) << "a convex box's fans pass on straight columns";
+  EXPECT_EQ(rounds.reused_elements(), 0u);
+
+  const std::vector<int> second = rounds.failing_points(b.box, b.layout, b.planes, turned, b.plan, b.params);
+  EXPECT_FALSE(second.empty());
+  EXPECT_EQ(second, b.fresh(turned));
+  EXPECT_GT(rounds.reused_elements(), 0u) << "the elements away from the turned column are the first round's";
+
+  const std::vector<int> third = rounds.failing_points(b.box, b.layout, b.planes, straight, b.plan, b.params);
+  EXPECT_EQ(third, b.fresh(straight));
+  EXPECT_TRUE(third.empty());
+
+  // Taller layers: the same columns through other points, nothing is reused.
+  BoxWithFans tall;
+  GrowthLaw law;
+  law.layers = 4;
+  law.first_height = 0.2;
+  law.growth_ratio = 1.5;
+  tall.plan = plan_columns(resolve_growth_law(law), std::vector<double>(tall.layout.n_columns(), 1.0));
+  const std::vector<int> fourth =
+      rounds.failing_points(tall.box, tall.layout, tall.planes, turned, tall.plan, tall.params);
+  EXPECT_EQ(rounds.reused_elements(), 0u);
+  EXPECT_EQ(fourth, tall.fresh(turned));
+}
+
+}  // namespace
+}  // namespace blayer
