@@ -84,11 +84,11 @@ Vec3 FanPrecheck::Round::top(int c, int k) const {
   return {from_bits(t[0]), from_bits(t[1]), from_bits(t[2])};
 }
 
-FanPrecheck::ElementKey FanPrecheck::key_of(const LayerElement& e, const std::vector<int>& run) {
+FanPrecheck::ElementKey FanPrecheck::key_of(const LayerElement& e, const std::vector<int>* run) {
   ElementKey k;
   k.kind = static_cast<int>(e.kind);
   k.split_at = e.split_at;
-  for (int j = 0; j < e.n_columns(); ++j) k.runs[j] = run[e.column[j]];
+  for (int j = 0; j < e.n_columns(); ++j) k.runs[j] = run ? (*run)[e.column[j]] : e.column[j];
   return k;
 }
 
@@ -106,7 +106,7 @@ std::vector<signed char> FanPrecheck::passed_before(const ColumnLayout& layout, 
     const LayerElement& e = layout.elements[checked[x]];
     bool known = true;
     for (int j = 0; j < e.n_columns() && known; ++j) known = previous_run[e.column[j]] >= 0;
-    if (known && std::binary_search(previous_.passed.begin(), previous_.passed.end(), key_of(e, previous_run)))
+    if (known && std::binary_search(previous_.passed.begin(), previous_.passed.end(), key_of(e, &previous_run)))
       passed[x] = 1;
   }
   return passed;
@@ -185,11 +185,8 @@ std::vector<int> FanPrecheck::failing_points(const TriSurface& wall, const Colum
     for (int c = 0; c < nc; ++c)
       if (grows[c]) base[c] = up[c];
   }
-  // This round's columns are their own trajectory ids.
-  std::vector<int> run(nc);
-  for (int c = 0; c < nc; ++c) run[c] = c;
   for (std::size_t x = 0; x < checked.size(); ++x)
-    if (passed[x] >= 0) current.passed.push_back(key_of(layout.elements[checked[x]], run));
+    if (passed[x] >= 0) current.passed.push_back(key_of(layout.elements[checked[x]], nullptr));
   std::sort(current.passed.begin(), current.passed.end());
   previous_ = std::move(current);
   std::vector<int> out;

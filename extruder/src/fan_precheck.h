@@ -60,8 +60,9 @@ class FanPrecheck {
   };
   static Round round_of(const TriSurface& wall, const ColumnLayout& layout, const WallPlanes& planes,
                         const StepDirections& dirs, const ColumnPlan& plan, const ExtrusionParams& params);
-  // The element's key with its columns' trajectory ids run[c].
-  static ElementKey key_of(const LayerElement& e, const std::vector<int>& run);
+  // The element's key with its columns' trajectory ids: (*run)[c], or the columns
+  // themselves (this round's ids) when run is null.
+  static ElementKey key_of(const LayerElement& e, const std::vector<int>* run);
   // Per checked element: 1 if it passed in the previous round on the same trajectories.
   std::vector<signed char> passed_before(const ColumnLayout& layout, const std::vector<std::size_t>& checked,
                                          const Round& current) const;

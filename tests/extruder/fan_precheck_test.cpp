@@ -24,14 +24,15 @@ struct BoxWithFans {
   WallTopology topo = build_column_topology(layout);
   WallPlanes planes{box, layout, topo};
   ExtrusionParams params;
-  ColumnPlan plan;
+  ColumnPlan plan = plan_with_first_height(0.05);
 
-  BoxWithFans() {
+  // Four layers growing by 1.5 from h1 on every column.
+  ColumnPlan plan_with_first_height(double h1) const {
     GrowthLaw law;
     law.layers = 4;
-    law.first_height = 0.05;
+    law.first_height = h1;
     law.growth_ratio = 1.5;
-    plan = plan_columns(resolve_growth_law(law), std::vector<double>(layout.n_columns(), 1.0));
+    return plan_columns(resolve_growth_law(law), std::vector<double>(layout.n_columns(), 1.0));
   }
   // Fan columns along their sector directions, the others along their face's normal.
   StepDirections directions() const {
@@ -81,11 +82,7 @@ TEST(FanPrecheck, ReusedPassesGiveTheFailingSetOfAFreshCheck) {
 
   // Taller layers: the same columns through other points, nothing is reused.
   BoxWithFans tall;
-  GrowthLaw law;
-  law.layers = 4;
-  law.first_height = 0.2;
-  law.growth_ratio = 1.5;
-  tall.plan = plan_columns(resolve_growth_law(law), std::vector<double>(tall.layout.n_columns(), 1.0));
+  tall.plan = tall.plan_with_first_height(0.2);
   const std::vector<int> fourth =
       rounds.failing_points(tall.box, tall.layout, tall.planes, turned, tall.plan, tall.params);
   EXPECT_EQ(rounds.reused_elements(), 0u);
