@@ -12,6 +12,10 @@
 
 namespace blayer {
 namespace oracle {
+// Internal linkage: each test source keeps its own copy, compiled with its own flags.
+// Shared inline functions would be merged at link time, and a copy from a source built
+// at -O0 could then serve the sources that keep the build's flags for speed.
+namespace {
 
 struct Link {
   std::vector<Vec3> u;  // link vertices (unit), closed
@@ -155,5 +159,6 @@ inline Best maximise(const Link& l, double v_min, int n_samples, unsigned seed, 
   return best;
 }
 
+}  // namespace
 }  // namespace oracle
 }  // namespace blayer
