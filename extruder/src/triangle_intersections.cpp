@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "blayer/extruder/triangle_bvh.h"
 #include "blayer/quality/filtered_orient3d.h"
@@ -78,6 +79,41 @@ bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const V
 // All three signs equal and non-zero: the triangle lies strictly on one side of the plane.
 bool strictly_one_side(int a, int b, int c) { return a != 0 && a == b && a == c; }
 
+// The corner whose side differs from the other two, given three non-zero sides that are
+// not all equal.
+int lone_corner(const int* side) { return side[1] == side[2] ? 0 : side[0] == side[2] ? 1 : 2; }
+
+// Two triangles each of which crosses the other's plane with no corner on it (all six
+// sides non-zero, mixed on both triangles). Each then meets the line L where the planes
+// cross in a closed segment, and the triangles meet iff those segments overlap; two
+// orientations order their ends along L (the test of Devillers and Guigue, 2002).
+// Name the corners so that p1 is alone on the positive side of the plane (p2, q2, r2)
+// and p2 alone on the positive side of (p1, q1, r1): a circular shift keeps a triangle's
+// orientation, and swapping its last two corners flips the side of the other's lone
+// corner. Let i1, i2 be where p1q1 and p1r1 cross L, j1, j2 where p2q2 and p2r2 do, and
+// l = n_s x n_t the direction of L. Then
+//   det[q1 - p1, p2 - p1, q2 - p1] = (positive) * l.(j1 - i1),
+// since q1 - p1 and q2 - p2 point from the positive sides into the other plane; and
+// l.(i2 - i1) < 0 < l.(j2 - j1) for non-degenerate triangles (expand i1, i2 as points of
+// the edges: l.(i2 - i1) is minus a square that vanishes only when q1 - p1 and r1 - p1
+// are parallel). So s covers [i2, i1] and t covers [j1, j2] along L, and they overlap
+// iff l.(j1 - i1) <= 0 and l.(j2 - i2) >= 0: two exact orientations instead of up to 18
+// in the edge tests.
+bool crossing_triangles_meet(const Vec3* s, const Vec3* t, const int* s_side, const int* t_side) {
+  const int i = lone_corner(s_side), j = lone_corner(t_side);
+  const Vec3& p1 = s[i];
+  const Vec3& p2 = t[j];
+  const Vec3* q1 = &s[(i + 1) % 3];
+  const Vec3* r1 = &s[(i + 2) % 3];
+  const Vec3* q2 = &t[(j + 1) % 3];
+  const Vec3* r2 = &t[(j + 2) % 3];
+  if (s_side[i] < 0) std::swap(q2, r2);
+  if (t_side[j] < 0) std::swap(q1, r1);
+  return detail::orient3d_filtered(p1, *q1, p2, *q2) <= 0 && detail::orient3d_filtered(p1, *r1, p2, *r2) >= 0;
+}
+
+bool no_zero(const int* side) { return side[0] != 0 && side[1] != 0 && side[2] != 0; }
+
 bool triangles_intersect(const Vec3* s, const Vec3* t) {
   // A triangle strictly on one side of the other's plane cannot meet it. This settles
   // almost every pair of nearby front triangles with 3 or 6 orientations instead of up
@@ -88,6 +124,7 @@ bool triangles_intersect(const Vec3* s, const Vec3* t) {
   if (strictly_one_side(s_side[0], s_side[1], s_side[2])) return false;
   detail::orient3d_sides(s[0], s[1], s[2], t, 3, t_side);
   if (strictly_one_side(t_side[0], t_side[1], t_side[2])) return false;
+  if (no_zero(s_side) && no_zero(t_side)) return crossing_triangles_meet(s, t, s_side, t_side);
   for (int k = 0; k < 3; ++k) {
     const int l = (k + 1) % 3;
     const int s_ends[2] = {s_side[k], s_side[l]}, t_ends[2] = {t_side[k], t_side[l]};
@@ -115,8 +152,9 @@ bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const V
   if (sp * sq > 0) return false;
   // The line pq crosses the plane within the segment; it meets the closed triangle iff
   // it passes on the same side of (or touches) all three edges.
-  const int o1 = detail::orient3d_filtered(p, q, a, b), o2 = detail::orient3d_filtered(p, q, b, c),
-            o3 = detail::orient3d_filtered(p, q, c, a);
+  const int o1 = detail::orient3d_filtered(p, q, a, b), o2 = detail::orient3d_filtered(p, q, b, c);
+  if (o1 * o2 < 0) return false;  // already on opposite sides of two edges
+  const int o3 = detail::orient3d_filtered(p, q, c, a);
   return (o1 >= 0 && o2 >= 0 && o3 >= 0) || (o1 <= 0 && o2 <= 0 && o3 <= 0);
 }
 

@@ -142,5 +142,30 @@ TEST(FilteredOrient3d, TriangleTestMatchesEdgeDefinition) {
   EXPECT_GT(n_hit, 1000);
 }
 
+// Nearly coplanar triangles, as on a flat face of a front whose heights vary a little:
+// most pairs cross each other's planes with no corner on them, where the test orders the
+// two segments on the planes' common line with two orientations. Some pairs share a
+// corner position exactly (touching), others overlap in the plane.
+TEST(FilteredOrient3d, NearlyCoplanarCrossingTrianglesMatchTheEdgeDefinition) {
+  Rng rnd;
+  std::vector<Vec3> pts(6);
+  const IndexedTriangle s{0, 1, 2}, t{3, 4, 5};
+  int n_hit = 0, n_miss = 0;
+  for (int i = 0; i < 50000; ++i) {
+    for (Vec3& x : pts) x = Vec3{rnd() * 4.0, rnd(), (rnd() - 0.5) * 1e-6};
+    if (i % 5 == 0) pts[3] = pts[i % 3];  // a corner of t on a corner of s
+    bool reference = false;
+    for (int k = 0; k < 3; ++k) {
+      reference = reference || segment_intersects_triangle(pts[k], pts[(k + 1) % 3], pts[3], pts[4], pts[5]) ||
+                  segment_intersects_triangle(pts[3 + k], pts[3 + (k + 1) % 3], pts[0], pts[1], pts[2]);
+    }
+    ASSERT_EQ(soup_triangles_intersect(pts, s, t), reference) << i;
+    n_hit += reference;
+    n_miss += !reference;
+  }
+  EXPECT_GT(n_hit, 5000);
+  EXPECT_GT(n_miss, 5000);
+}
+
 }  // namespace
 }  // namespace blayer
