@@ -114,6 +114,20 @@ bool crossing_triangles_meet(const Vec3* s, const Vec3* t, const int* s_side, co
 
 bool no_zero(const int* side) { return side[0] != 0 && side[1] != 0 && side[2] != 0; }
 
+// Triangles (v, sa, sb) and (v, ta, tb) sharing only v, where sa and sb lie strictly on
+// opposite sides of the plane of the second and ta and tb of the first. Each then meets
+// the line L where the planes cross in a segment from v: [v, i] with i strictly inside
+// sa sb, [v, j] with j strictly inside ta tb; they meet beyond v iff i and j lie on the
+// same side of v. In the second's plane, the ray from v through j is on tb's side of the
+// line v ta (j lies strictly between ta and tb), and the opposite ray on the other side
+// (L is not that line: ta is off the first plane). The plane through v, ta, sa crosses
+// the second's plane in that line (sa is off it), so sides of that line there are sides
+// of this plane; and i = sa + m (sb - sa) with m > 0 is on the side of sb. Two
+// orientations instead of up to six in the edge tests.
+bool crossing_at_shared_corner(const Vec3& v, const Vec3& sa, const Vec3& sb, const Vec3& ta, const Vec3& tb) {
+  return detail::orient3d_filtered(v, ta, sa, sb) == detail::orient3d_filtered(v, ta, sa, tb);
+}
+
 bool triangles_intersect(const Vec3* s, const Vec3* t) {
   // A triangle strictly on one side of the other's plane cannot meet it. This settles
   // almost every pair of nearby front triangles with 3 or 6 orientations instead of up
@@ -196,6 +210,7 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
     if (s_side[0] * s_side[1] > 0) return false;
     detail::orient3d_sides(v, sa, sb, t_far, 2, t_side);
     if (t_side[0] * t_side[1] > 0) return false;
+    if (s_side[0] * s_side[1] < 0 && t_side[0] * t_side[1] < 0) return crossing_at_shared_corner(v, sa, sb, ta, tb);
     return segment_meets_triangle(sa, sb, v, ta, tb, s_side) || segment_meets_triangle(ta, tb, v, sa, sb, t_side);
   }
   const Vec3 S[3] = {pts[s[0]], pts[s[1]], pts[s[2]]};
