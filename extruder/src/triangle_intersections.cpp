@@ -99,14 +99,14 @@ int lone_corner(const int* side) { return side[1] == side[2] ? 0 : side[0] == si
 // are parallel). So s covers [i2, i1] and t covers [j1, j2] along L, and they overlap
 // iff l.(j1 - i1) <= 0 and l.(j2 - i2) >= 0: two exact orientations instead of up to 18
 // in the edge tests.
-bool crossing_triangles_meet(const Vec3* s, const Vec3* t, const int* s_side, const int* t_side) {
+bool crossing_triangles_meet(const Vec3* const* s, const Vec3* const* t, const int* s_side, const int* t_side) {
   const int i = lone_corner(s_side), j = lone_corner(t_side);
-  const Vec3& p1 = s[i];
-  const Vec3& p2 = t[j];
-  const Vec3* q1 = &s[(i + 1) % 3];
-  const Vec3* r1 = &s[(i + 2) % 3];
-  const Vec3* q2 = &t[(j + 1) % 3];
-  const Vec3* r2 = &t[(j + 2) % 3];
+  const Vec3& p1 = *s[i];
+  const Vec3& p2 = *t[j];
+  const Vec3* q1 = s[(i + 1) % 3];
+  const Vec3* r1 = s[(i + 2) % 3];
+  const Vec3* q2 = t[(j + 1) % 3];
+  const Vec3* r2 = t[(j + 2) % 3];
   if (s_side[i] < 0) std::swap(q2, r2);
   if (t_side[j] < 0) std::swap(q1, r1);
   return detail::orient3d_filtered(p1, *q1, p2, *q2) <= 0 && detail::orient3d_filtered(p1, *r1, p2, *r2) >= 0;
@@ -128,22 +128,22 @@ bool crossing_at_shared_corner(const Vec3& v, const Vec3& sa, const Vec3& sb, co
   return detail::orient3d_filtered(v, ta, sa, sb) == detail::orient3d_filtered(v, ta, sa, tb);
 }
 
-bool triangles_intersect(const Vec3* s, const Vec3* t) {
+bool triangles_intersect(const Vec3* const* s, const Vec3* const* t) {
   // A triangle strictly on one side of the other's plane cannot meet it. This settles
   // almost every pair of nearby front triangles with 3 or 6 orientations instead of up
   // to 30 in the edge tests below, which decide the remaining pairs.
   // The edge tests reuse these sides of the edges' ends.
   int s_side[3], t_side[3];
-  detail::orient3d_sides(t[0], t[1], t[2], s, 3, s_side);
+  detail::orient3d_sides(*t[0], *t[1], *t[2], s, 3, s_side);
   if (strictly_one_side(s_side[0], s_side[1], s_side[2])) return false;
-  detail::orient3d_sides(s[0], s[1], s[2], t, 3, t_side);
+  detail::orient3d_sides(*s[0], *s[1], *s[2], t, 3, t_side);
   if (strictly_one_side(t_side[0], t_side[1], t_side[2])) return false;
   if (no_zero(s_side) && no_zero(t_side)) return crossing_triangles_meet(s, t, s_side, t_side);
   for (int k = 0; k < 3; ++k) {
     const int l = (k + 1) % 3;
     const int s_ends[2] = {s_side[k], s_side[l]}, t_ends[2] = {t_side[k], t_side[l]};
-    if (segment_meets_triangle(s[k], s[l], t[0], t[1], t[2], s_ends)) return true;
-    if (segment_meets_triangle(t[k], t[l], s[0], s[1], s[2], t_ends)) return true;
+    if (segment_meets_triangle(*s[k], *s[l], *t[0], *t[1], *t[2], s_ends)) return true;
+    if (segment_meets_triangle(*t[k], *t[l], *s[0], *s[1], *s[2], t_ends)) return true;
   }
   return false;
 }
@@ -151,7 +151,7 @@ bool triangles_intersect(const Vec3* s, const Vec3* t) {
 }  // namespace
 
 bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ends[2] = {p, q};
+  const Vec3* const ends[2] = {&p, &q};
   int side[2];
   detail::orient3d_sides(a, b, c, ends, 2, side);
   return segment_meets_triangle(p, q, a, b, c, side);
@@ -204,7 +204,8 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
     const Vec3& v = pts[s[is]];
     // A triangle whose far edge lies strictly on one side of the other's plane meets it
     // at v alone: the first plane test settles most neighbours of a front.
-    const Vec3 s_far[2] = {sa, sb}, t_far[2] = {ta, tb};
+    const Vec3* const s_far[2] = {&sa, &sb};
+    const Vec3* const t_far[2] = {&ta, &tb};
     int s_side[2], t_side[2];
     detail::orient3d_sides(v, ta, tb, s_far, 2, s_side);
     if (s_side[0] * s_side[1] > 0) return false;
@@ -213,8 +214,8 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
     if (s_side[0] * s_side[1] < 0 && t_side[0] * t_side[1] < 0) return crossing_at_shared_corner(v, sa, sb, ta, tb);
     return segment_meets_triangle(sa, sb, v, ta, tb, s_side) || segment_meets_triangle(ta, tb, v, sa, sb, t_side);
   }
-  const Vec3 S[3] = {pts[s[0]], pts[s[1]], pts[s[2]]};
-  const Vec3 T[3] = {pts[t[0]], pts[t[1]], pts[t[2]]};
+  const Vec3* const S[3] = {&pts[s[0]], &pts[s[1]], &pts[s[2]]};
+  const Vec3* const T[3] = {&pts[t[0]], &pts[t[1]], &pts[t[2]]};
   return triangles_intersect(S, T);
 }
 

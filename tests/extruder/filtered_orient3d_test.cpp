@@ -75,7 +75,8 @@ TEST(FilteredOrient3d, PlaneAgainstSeveralPointsAgreesWithTheExactPredicate) {
         ASSERT_TRUE(is_finite(p[k])) << "scale " << scale << " far " << far;
       }
       int sides[4];
-      detail::orient3d_sides(plane[0], plane[1], plane[2], p, 4, sides);
+      const Vec3* const at[4] = {&p[0], &p[1], &p[2], &p[3]};
+      detail::orient3d_sides(plane[0], plane[1], plane[2], at, 4, sides);
       for (int k = 0; k < 4; ++k) {
         const int exact = orient3d_sign(plane[0], plane[1], plane[2], p[k]);
         ASSERT_EQ(sides[k], exact) << "scale " << scale << " far " << far << " i " << i << " point " << k;
@@ -107,7 +108,8 @@ TEST(FilteredOrient3d, UnderflowUnderAHugeDifferenceGoesToTheExactPredicate) {
   const int exact_t = orient3d_sign(o, tb, tc, tp);
   ASSERT_NE(exact_t, 0);
   int side;
-  detail::orient3d_sides(o, tb, tc, &tp, 1, &side);
+  const Vec3* const at = &tp;
+  detail::orient3d_sides(o, tb, tc, &at, 1, &side);
   EXPECT_EQ(side, exact_t);
 }
 

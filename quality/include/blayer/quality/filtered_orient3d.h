@@ -66,8 +66,9 @@ inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const 
   return sign != 0 ? -sign : orient3d_sign(a, b, c, d);
 }
 
-// out[i] = orient3d_filtered(a, b, c, p[i]) for i < n, with the plane's minors shared.
-inline void orient3d_sides(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* p, int n, int* out) {
+// out[i] = orient3d_filtered(a, b, c, *p[i]) for i < n, with the plane's minors shared.
+// The points are passed by address: the hot callers name them in a shared point array.
+inline void orient3d_sides(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* const* p, int n, int* out) {
   const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
   const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
   const double bycz = by * cz, bzcy = bz * cy, bzcx = bz * cx, bxcz = bx * cz, bxcy = bx * cy, bycx = by * cx;
@@ -75,11 +76,12 @@ inline void orient3d_sides(const Vec3& a, const Vec3& b, const Vec3& c, const Ve
   const double px_perm = std::fabs(bycz) + std::fabs(bzcy), py_perm = std::fabs(bzcx) + std::fabs(bxcz),
                pz_perm = std::fabs(bxcy) + std::fabs(bycx);
   for (int i = 0; i < n; ++i) {
-    const double qx = p[i][0] - a[0], qy = p[i][1] - a[1], qz = p[i][2] - a[2];
+    const Vec3& q = *p[i];
+    const double qx = q[0] - a[0], qy = q[1] - a[1], qz = q[2] - a[2];
     const double ax = std::fabs(qx), ay = std::fabs(qy), az = std::fabs(qz);
     const int sign = certain_sign(qx * mx + qy * my + qz * mz, ax * px_perm + ay * py_perm + az * pz_perm,
                                   std::max(ax, std::max(ay, az)));
-    out[i] = sign != 0 ? sign : orient3d_sign(a, b, c, p[i]);
+    out[i] = sign != 0 ? sign : orient3d_sign(a, b, c, q);
   }
 }
 
