@@ -41,6 +41,33 @@ TEST(TriangleIntersections, SharedEdgeOnlyCountsWhenFolded) {
   EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {2, 1, 0}));  // the same face
 }
 
+// Edge neighbours fold iff the four points are coplanar and the far corners lie on the
+// same side of the shared edge. On lattice points (small integers: every product below
+// is exact) that is a triple product of zero and a positive dot product of the two
+// normals, a reference independent of the projection the test decides the side in. A
+// third of the pairs are made coplanar, as flat quads of a front are, and a third nearly
+// so (where the floating-point filter cannot tell).
+TEST(TriangleIntersections, SharedEdgePairsFoldExactlyWhenCoplanarOnOneSide) {
+  testing::Lcg lcg(4242);
+  auto grid = [&]() { return std::floor(lcg.uniform() * 7.0) - 3.0; };
+  int folds = 0, flat_unfolded = 0;
+  for (int i = 0; i < 30000; ++i) {
+    std::vector<Vec3> p(4);
+    for (Vec3& x : p) x = {grid(), grid(), grid()};
+    if (i % 3 != 2) p[3][2] = 0.0, p[0][2] = p[1][2] = p[2][2] = 0.0;  // all in z = 0
+    if (i % 3 == 1) p[3][2] = std::nextafter(0.0, 1.0);  // the far corner one subnormal off it
+    const Vec3 n_c = cross(p[1] - p[0], p[2] - p[0]), n_d = cross(p[1] - p[0], p[3] - p[0]);
+    if (norm2(n_c) == 0.0 || norm2(n_d) == 0.0) continue;  // zero-area triangles: outside the contract
+    const bool coplanar = dot(n_c, p[3] - p[0]) == 0.0;
+    const bool expected = coplanar && dot(n_c, n_d) > 0.0;
+    ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {1, 0, 3}), expected) << "pair " << i;
+    folds += expected;
+    flat_unfolded += coplanar && !expected;
+  }
+  EXPECT_GT(folds, 1000);
+  EXPECT_GT(flat_unfolded, 1000);
+}
+
 TEST(TriangleIntersections, SharedVertexCountsWhenTheTrianglesCrossBeyondIt) {
   // Both triangles contain the origin; the second pierces the first away from it.
   const std::vector<Vec3> p = {A, B, C, {0.3, 0.3, -1}, {0.3, 0.3, 1}, {-1, -1, 1}, {-1, 0, 1}};
