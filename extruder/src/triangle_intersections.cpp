@@ -77,6 +77,28 @@ bool coplanar_same_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
   return orient2d(A, B, C) * orient2d(A, B, D) > 0;
 }
 
+// Coplanar triangles (v, sa, sb) and (v, ta, tb) sharing only v, in the projection that
+// drops the dominant axis of the first's normal: near v each fills its angle at v, and
+// each lies inside that angle, so they share a point other than v iff the two closed
+// angles share a ray, i.e. iff a side ray of one lies in the other. A ray v x lies in the
+// closed angle (v; a, b) of orientation o iff o * orient(v, a, x) >= 0 and
+// o * orient(v, x, b) >= 0: the ray opposite a side fails the other test. Returns false
+// in *decided when either projection is flat (a triangle of zero area: its sides were
+// zero without the two being coplanar), for the edge tests to decide.
+bool coplanar_corner_angles_meet(const Vec3& v, const Vec3& sa, const Vec3& sb, const Vec3& ta, const Vec3& tb,
+                                 bool* decided) {
+  int i, j;
+  projection_axes(v, sa, sb, &i, &j);
+  const Vec2 V{v[i], v[j]}, SA{sa[i], sa[j]}, SB{sb[i], sb[j]}, TA{ta[i], ta[j]}, TB{tb[i], tb[j]};
+  const int os = orient2d(V, SA, SB), ot = orient2d(V, TA, TB);
+  *decided = os != 0 && ot != 0;
+  if (!*decided) return false;
+  auto in_angle = [&](const Vec2& a, const Vec2& b, int o, const Vec2& x) {
+    return o * orient2d(V, a, x) >= 0 && o * orient2d(V, x, b) >= 0;
+  };
+  return in_angle(SA, SB, os, TA) || in_angle(SA, SB, os, TB) || in_angle(TA, TB, ot, SA) || in_angle(TA, TB, ot, SB);
+}
+
 // segment_intersects_triangle given the orientations of p and q against the plane abc.
 bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c,
                             const int* side);
@@ -217,6 +239,11 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
     detail::orient3d_sides(v, sa, sb, t_far, 2, t_side);
     if (t_side[0] * t_side[1] > 0) return false;
     if (s_side[0] * s_side[1] < 0 && t_side[0] * t_side[1] < 0) return crossing_at_shared_corner(v, sa, sb, ta, tb);
+    if (s_side[0] == 0 && s_side[1] == 0 && t_side[0] == 0 && t_side[1] == 0) {
+      bool decided;
+      const bool meet = coplanar_corner_angles_meet(v, sa, sb, ta, tb, &decided);
+      if (decided) return meet;
+    }
     return segment_meets_triangle(sa, sb, v, ta, tb, s_side) || segment_meets_triangle(ta, tb, v, sa, sb, t_side);
   }
   const Vec3* const S[3] = {&pts[s[0]], &pts[s[1]], &pts[s[2]]};
