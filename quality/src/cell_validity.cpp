@@ -1,6 +1,8 @@
 #include "blayer/quality/cell_validity.h"
 
 #include <algorithm>
+#include <limits>
+#include <vector>
 
 #include "blayer/quality/filtered_orient3d.h"
 
@@ -96,7 +98,141 @@ std::size_t corner_tet_count(CellType type) {
   return 0;
 }
 
+namespace {
+
+// The validity tets as planes and points: det[b - a, c - a, q - a] for the several tets
+// (a, b, c, q) on one plane shares its 2x2 minors, so a cell's determinants cost about
+// half as much as separate orientations. A greedy cover takes the triangle held by the
+// most tets not yet covered: the 58 hex tets need 17 planes, the 12 wedge tets 4, the 4
+// pyramid tets 2.
+struct TetOnPlane {
+  int plane;      // index into the planes
+  int q;          // the tet's fourth node
+  double parity;  // +1 or -1: the tet's orientation is parity * det[b - a, c - a, q - a]
+};
+struct PlaneCover {
+  std::vector<std::array<int, 3>> planes;
+  std::vector<TetOnPlane> tets;
+};
+
+bool holds(const std::array<int, 4>& t, int node) { return std::find(t.begin(), t.end(), node) != t.end(); }
+
+bool holds_plane(const std::array<int, 4>& t, const std::array<int, 3>& plane) {
+  return holds(t, plane[0]) && holds(t, plane[1]) && holds(t, plane[2]);
+}
+
+// The parity of the permutation taking tet t to (plane[0], plane[1], plane[2], q).
+double permutation_parity(const std::array<int, 4>& t, const std::array<int, 3>& plane, int q) {
+  const std::array<int, 4> to{plane[0], plane[1], plane[2], q};
+  long pos[4];
+  for (int i = 0; i < 4; ++i) pos[i] = std::find(t.begin(), t.end(), to[i]) - t.begin();
+  int inversions = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) inversions += pos[i] > pos[j];
+  return inversions % 2 ? -1.0 : 1.0;
+}
+
+PlaneCover cover_by_planes(CellType type) {
+  std::size_t n = 0;
+  const std::array<int, 4>* tets = validity_tets(type, &n);
+  std::vector<bool> covered(n, false);
+  PlaneCover cover;
+  for (std::size_t left = n; left > 0;) {
+    std::array<int, 3> best{};
+    std::size_t best_count = 0;
+    for (int a = 0; a < 8; ++a)
+      for (int b = a + 1; b < 8; ++b)
+        for (int c = b + 1; c < 8; ++c) {
+          std::size_t count = 0;
+          for (std::size_t i = 0; i < n; ++i) count += !covered[i] && holds_plane(tets[i], {a, b, c});
+          if (count > best_count) best = {a, b, c}, best_count = count;
+        }
+    const int plane = static_cast<int>(cover.planes.size());
+    cover.planes.push_back(best);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (covered[i] || !holds_plane(tets[i], best)) continue;
+      int q = 0;
+      for (int node : tets[i])
+        if (node != best[0] && node != best[1] && node != best[2]) q = node;
+      cover.tets.push_back({plane, q, permutation_parity(tets[i], best, q)});
+      covered[i] = true;
+      --left;
+    }
+  }
+  return cover;
+}
+
+const PlaneCover& plane_cover(CellType type) {
+  static const PlaneCover kCovers[4] = {cover_by_planes(CellType::kTet), cover_by_planes(CellType::kPyramid),
+                                        cover_by_planes(CellType::kWedge), cover_by_planes(CellType::kHex)};
+  switch (type) {
+    case CellType::kTet: return kCovers[0];
+    case CellType::kPyramid: return kCovers[1];
+    case CellType::kWedge: return kCovers[2];
+    case CellType::kHex: break;
+  }
+  return kCovers[3];
+}
+
+// A threshold above the rounding error of every determinant certainly_valid evaluates,
+// or -1 when the cell's extent is out of the range this argument covers. Each is
+// det[b - a, c - a, q - a] evaluated as orient3d_sides does, whose rounding error is
+// below kOrient3dErrBound times its computed permanent (filtered_orient3d.h). Rounding
+// is monotone, so every rounded difference of two nodes along axis k is at most
+// D_k = fl(max_k - min_k): the exact permanent of the rounded differences is at most
+// 6 D_0 D_1 D_2 and the computed one at most (1 + eps)^4 times that. With every D_k in
+// [1e-100, 1e100] no product here underflows, and the factor 1 + 1e-14 covers the
+// (1 + eps)^7 of both roundings: U is above every computed permanent. The threshold
+// then adds kUnderflowSlack for the determinants' own underflowing products, as the
+// per-tet filter does.
+double cell_threshold(const Vec3* p, int n_nodes) {
+  Vec3 lo = p[0], hi = p[0];
+  for (int i = 1; i < n_nodes; ++i)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[i][k]);
+      hi[k] = std::max(hi[k], p[i][k]);
+    }
+  const Vec3 d = hi - lo;
+  for (int k = 0; k < 3; ++k)
+    if (!(d[k] >= 1e-100 && d[k] <= detail::kMaxDifference)) return -1.0;
+  const double u = 6.0 * d[0] * d[1] * d[2] * (1.0 + 1e-14);
+  if (!(u >= 1e-200 && u <= 1e200)) return -1.0;
+  return detail::kOrient3dErrBound * u + detail::kUnderflowSlack;
+}
+
+// Whether every validity tet is positive by a margin that one bound for the whole cell
+// certifies: a boundary-layer cell of relative height h has determinants near h times
+// its extent cubed, many orders above the bound. False means "not certified": the
+// per-tet filter and the exact predicate decide then.
+bool certainly_valid(CellType type, const Vec3* p) {
+  const double threshold = cell_threshold(p, corner_count(type));
+  if (threshold < 0.0) return false;
+  const PlaneCover& cover = plane_cover(type);
+  double minors[kHexTetCount][3];
+  for (std::size_t i = 0; i < cover.planes.size(); ++i) {
+    const Vec3& a = p[cover.planes[i][0]];
+    const Vec3& b = p[cover.planes[i][1]];
+    const Vec3& c = p[cover.planes[i][2]];
+    const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
+    const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
+    minors[i][0] = by * cz - bz * cy;
+    minors[i][1] = bz * cx - bx * cz;
+    minors[i][2] = bx * cy - by * cx;
+  }
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const TetOnPlane& t : cover.tets) {
+    const Vec3& a = p[cover.planes[t.plane][0]];
+    const Vec3& q = p[t.q];
+    const double* m = minors[t.plane];
+    lowest = std::min(lowest, t.parity * ((q[0] - a[0]) * m[0] + (q[1] - a[1]) * m[1] + (q[2] - a[2]) * m[2]));
+  }
+  return lowest > threshold;
+}
+
+}  // namespace
+
 Validity cell_validity(CellType type, const Vec3* corners) {
+  if (certainly_valid(type, corners)) return Validity::kValid;
   std::size_t n = 0;
   const std::array<int, 4>* tets = validity_tets(type, &n);
   const std::size_t n_corner = corner_tet_count(type);
@@ -117,6 +253,7 @@ Validity cell_validity(CellType type, const Vec3* corners) {
 }
 
 bool cell_is_valid(CellType type, const Vec3* corners) {
+  if (certainly_valid(type, corners)) return true;
   std::size_t n = 0;
   const std::array<int, 4>* tets = validity_tets(type, &n);
   for (std::size_t i = 0; i < n; ++i) {

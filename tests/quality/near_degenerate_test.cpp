@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -160,6 +161,44 @@ TEST(NearDegenerateCells, LatticeCellsOfEveryTypeGetTheExactVerdict) {
     EXPECT_GT(by_class[static_cast<int>(Validity::kValid)], 0) << static_cast<int>(type);
     EXPECT_GT(by_class[static_cast<int>(Validity::kFlat)], 0) << static_cast<int>(type);
     EXPECT_GT(by_class[static_cast<int>(Validity::kInverted)], 0) << static_cast<int>(type);
+  }
+}
+
+TEST(NearDegenerateCells, DistortedCellsOfEveryTypeGetTheVerdictOfTheirTetSigns) {
+  // Each reference cell scaled, moved far from the origin and squashed to a thin layer
+  // cell, with every node moved at random by up to `spread` of the cell: small spreads
+  // leave it valid (the cell-wide bound decides those), large ones twist, flatten and
+  // invert it in every pattern of tet signs. The verdicts must be those of the validity
+  // tets' exact signs taken one by one.
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const std::pair<CellType, std::vector<Vec3>> cells[] = {{CellType::kTet, test::unit_tet()},
+                                                          {CellType::kPyramid, test::unit_pyramid()},
+                                                          {CellType::kWedge, test::right_prism()},
+                                                          {CellType::kHex, test::unit_hex()}};
+  for (const auto& [type, ref] : cells) {
+    int by_class[4] = {0, 0, 0, 0};
+    for (int trial = 0; trial < 20000; ++trial) {
+      const double spread = std::pow(10.0, -6.0 + 6.0 * (trial % 100) / 100.0);
+      const double height = std::pow(10.0, -4.0 * (trial % 7) / 6.0);
+      const Vec3 origin{1e3 * unit(rng), 1e3 * unit(rng), 1e3 * unit(rng)};
+      std::vector<Vec3> cell(ref.size());
+      for (std::size_t k = 0; k < ref.size(); ++k) {
+        const Vec3 r{ref[k][0], ref[k][1], ref[k][2] * height};
+        cell[k] = origin + 0.1 * r + 0.1 * spread * Vec3{unit(rng), unit(rng), unit(rng)};
+      }
+      const Validity expected = classify(cell, orient3d_sign, type);
+      ASSERT_EQ(cell_validity(type, cell.data()), expected) << "type " << static_cast<int>(type) << " trial " << trial;
+      ASSERT_EQ(cell_is_valid(type, cell.data()), expected == Validity::kValid)
+          << "type " << static_cast<int>(type) << " trial " << trial;
+      ++by_class[static_cast<int>(expected)];
+    }
+    // Meaningful only if both valid cells and failing ones occur (a tet has no split to
+    // twist, and flat cells need exact coincidences).
+    EXPECT_GT(by_class[static_cast<int>(Validity::kValid)], 1000) << static_cast<int>(type);
+    EXPECT_GT(by_class[static_cast<int>(Validity::kInverted)], 1000) << static_cast<int>(type);
+    if (type == CellType::kWedge || type == CellType::kHex)
+      EXPECT_GT(by_class[static_cast<int>(Validity::kTwisted)], 100) << static_cast<int>(type);
   }
 }
 
