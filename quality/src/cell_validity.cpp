@@ -107,6 +107,7 @@ namespace {
 // pyramid tets 2.
 struct TetOnPlane {
   int plane;      // index into the planes
+  int a;          // the plane's first node (read per tet: one indirection less)
   int q;          // the tet's fourth node
   double parity;  // +1 or -1: the tet's orientation is parity * det[b - a, c - a, q - a]
 };
@@ -154,7 +155,7 @@ PlaneCover cover_by_planes(CellType type) {
       int q = 0;
       for (int node : tets[i])
         if (node != best[0] && node != best[1] && node != best[2]) q = node;
-      cover.tets.push_back({plane, q, permutation_parity(tets[i], best, q)});
+      cover.tets.push_back({plane, best[0], q, permutation_parity(tets[i], best, q)});
       covered[i] = true;
       --left;
     }
@@ -221,7 +222,7 @@ bool certainly_valid(CellType type, const Vec3* p) {
   }
   double lowest = std::numeric_limits<double>::infinity();
   for (const TetOnPlane& t : cover.tets) {
-    const Vec3& a = p[cover.planes[t.plane][0]];
+    const Vec3& a = p[t.a];
     const Vec3& q = p[t.q];
     const double* m = minors[t.plane];
     lowest = std::min(lowest, t.parity * ((q[0] - a[0]) * m[0] + (q[1] - a[1]) * m[1] + (q[2] - a[2]) * m[2]));
