@@ -42,9 +42,10 @@
 //           not. Every affine image of a cube passes. blayer writes hexes on fan
 //           strips (extruder/layer_cells.h).
 //
-// Exactness: each sign is orient3d_sign's (filtered_orient3d.h decides the clear cases
-// in floating point and passes the rest to the exact predicate), so the result is exact
-// for the given doubles:
+// Exactness: each sign is orient3d_sign's (one error bound for the whole cell certifies
+// the cells whose every tet is clearly positive; filtered_orient3d.h decides the other
+// clear cases in floating point and passes the rest to the exact predicate), so the
+// result is exact for the given doubles:
 // a prism of relative height 1e-12 is decided correctly and the same on every machine.
 #pragma once
 
