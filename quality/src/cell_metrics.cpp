@@ -26,28 +26,69 @@ constexpr std::array<int, 4> kHexCorners[] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3,
 
 double triple(const Vec3& a, const Vec3& b, const Vec3& c) { return dot(a, cross(b, c)); }
 
+// Squared length and length of every edge of a cell, by node pair (both orders). Every
+// edge serves two corner Jacobians, two faces and the aspect ratio, so its length is
+// computed once. The square is the same number whichever way the edge is subtracted.
+struct EdgeLengths {
+  double n2[8][8];
+  double len[8][8];
+};
+
+constexpr std::array<int, 2> kTetEdges[] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+constexpr std::array<int, 2> kPyramidEdges[] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 4}, {1, 4}, {2, 4}, {3, 4}};
+constexpr std::array<int, 2> kWedgeEdges[] = {{0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5},
+                                              {5, 3}, {0, 3}, {1, 4}, {2, 5}};
+constexpr std::array<int, 2> kHexEdges[] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                            {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+
+template <std::size_t N>
+void fill_edge_lengths(const std::array<int, 2> (&edges)[N], const Vec3* p, EdgeLengths* e) {
+  for (const std::array<int, 2>& ab : edges) {
+    const int a = ab[0], b = ab[1];
+    const double n2 = norm2(p[b] - p[a]);
+    const double len = std::sqrt(n2);
+    e->n2[a][b] = e->n2[b][a] = n2;
+    e->len[a][b] = e->len[b][a] = len;
+  }
+}
+
+void fill_edge_lengths(CellType t, const Vec3* p, EdgeLengths* e) {
+  switch (t) {
+    case CellType::kTet: fill_edge_lengths(kTetEdges, p, e); break;
+    case CellType::kPyramid: fill_edge_lengths(kPyramidEdges, p, e); break;
+    case CellType::kWedge: fill_edge_lengths(kWedgeEdges, p, e); break;
+    case CellType::kHex: fill_edge_lengths(kHexEdges, p, e); break;
+  }
+}
+
 // det[e1,e2,e3] / (|e1||e2||e3|), 0 when an edge has zero length.
-double normalized_jacobian(const Vec3& e1, const Vec3& e2, const Vec3& e3) {
-  const double lengths = norm(e1) * norm(e2) * norm(e3);
+double normalized_jacobian(const Vec3& e1, const Vec3& e2, const Vec3& e3, double lengths) {
   return lengths > 0.0 ? triple(e1, e2, e3) / lengths : 0.0;
 }
 
+double normalized_jacobian(const Vec3& e1, const Vec3& e2, const Vec3& e3) {
+  return normalized_jacobian(e1, e2, e3, norm(e1) * norm(e2) * norm(e3));
+}
+
+// The edge vectors are still subtracted at each corner, from the corner: the sign of a
+// zero component (and so of a zero determinant) depends on the direction.
 template <std::size_t N>
-double min_corner_jacobian(const std::array<int, 4> (&corners)[N], const Vec3* p) {
+double min_corner_jacobian(const std::array<int, 4> (&corners)[N], const Vec3* p, const EdgeLengths& e) {
   double m = std::numeric_limits<double>::infinity();
   for (const std::array<int, 4>& c : corners) {
     const Vec3& o = p[c[0]];
-    m = std::min(m, normalized_jacobian(p[c[1]] - o, p[c[2]] - o, p[c[3]] - o));
+    const double lengths = e.len[c[0]][c[1]] * e.len[c[0]][c[2]] * e.len[c[0]][c[3]];
+    m = std::min(m, normalized_jacobian(p[c[1]] - o, p[c[2]] - o, p[c[3]] - o, lengths));
   }
   return m;
 }
 
 // A tet's corner determinants are all 6V; verdict divides by the largest product of
 // corner edge lengths, which for a negative volume gives the value closest to zero.
-double tet_jacobian(const Vec3* p) {
+double tet_jacobian(const Vec3* p, const EdgeLengths& e) {
   double largest = 0.0;
   for (const std::array<int, 4>& c : kTetCorners)
-    largest = std::max(largest, norm(p[c[1]] - p[c[0]]) * norm(p[c[2]] - p[c[0]]) * norm(p[c[3]] - p[c[0]]));
+    largest = std::max(largest, e.len[c[0]][c[1]] * e.len[c[0]][c[2]] * e.len[c[0]][c[3]]);
   return largest > 0.0 ? triple(p[1] - p[0], p[2] - p[0], p[3] - p[0]) / largest : 0.0;
 }
 
@@ -58,19 +99,19 @@ double hex_centre_jacobian(const Vec3* p) {
   return normalized_jacobian(x1, x2, x3);
 }
 
-double scaled_jacobian(CellType t, const Vec3* p) {
+double scaled_jacobian(CellType t, const Vec3* p, const EdgeLengths& e) {
   double j = 0.0;
   switch (t) {
-    case CellType::kTet: j = std::sqrt(2.0) * tet_jacobian(p); break;
-    case CellType::kPyramid: j = std::sqrt(2.0) * min_corner_jacobian(kPyramidCorners, p); break;
-    case CellType::kWedge: j = 2.0 / std::sqrt(3.0) * min_corner_jacobian(kWedgeCorners, p); break;
-    case CellType::kHex: j = std::min(min_corner_jacobian(kHexCorners, p), hex_centre_jacobian(p)); break;
+    case CellType::kTet: j = std::sqrt(2.0) * tet_jacobian(p, e); break;
+    case CellType::kPyramid: j = std::sqrt(2.0) * min_corner_jacobian(kPyramidCorners, p, e); break;
+    case CellType::kWedge: j = 2.0 / std::sqrt(3.0) * min_corner_jacobian(kWedgeCorners, p, e); break;
+    case CellType::kHex: j = std::min(min_corner_jacobian(kHexCorners, p, e), hex_centre_jacobian(p)); break;
   }
   return std::min(j, 1.0);
 }
 
-// Cosine of the angle between a and b; both must be non-zero.
-double cosine(const Vec3& a, const Vec3& b) { return dot(a, b) / std::sqrt(norm2(a) * norm2(b)); }
+// Cosine of the angle between a and b from their squared lengths; both must be non-zero.
+double cosine(const Vec3& a, double a_n2, const Vec3& b, double b_n2) { return dot(a, b) / std::sqrt(a_n2 * b_n2); }
 
 // Equiangle skewness of a polygon face with n = 3 or 4 nodes. The extreme corners are
 // picked by cosine and only their angles are evaluated (atan2, accurate near 0 and 180).
@@ -85,7 +126,7 @@ double face_skewness(const Vec3* p, const detail::FaceDef& f) {
     w[i] = p[f.v[(i + 1) % f.n]] - b;
     // A zero-length edge makes the face collapsed: worst skew.
     if (norm2(u[i]) == 0.0 || norm2(w[i]) == 0.0) return 1.0;
-    const double c = cosine(u[i], w[i]);
+    const double c = cosine(u[i], norm2(u[i]), w[i], norm2(w[i]));
     if (c > cos_lo) cos_lo = c, i_lo = i;
     if (c < cos_hi) cos_hi = c, i_hi = i;
   }
@@ -95,15 +136,16 @@ double face_skewness(const Vec3* p, const detail::FaceDef& f) {
 }
 
 // Tracks the largest angle over vector pairs by cosine; one atan2 at the end. A pair
-// with a zero vector has no angle and is skipped.
+// with a zero vector has no angle and is skipped. x_n2, y_n2: squared lengths.
 struct LargestAngle {
   double cos = 2.0;
   Vec3 a{}, b{};
-  void add(const Vec3& x, const Vec3& y) {
-    if (norm2(x) == 0.0 || norm2(y) == 0.0) return;
-    const double c = cosine(x, y);
+  void add(const Vec3& x, double x_n2, const Vec3& y, double y_n2) {
+    if (x_n2 == 0.0 || y_n2 == 0.0) return;
+    const double c = cosine(x, x_n2, y, y_n2);
     if (c < cos) cos = c, a = x, b = y;
   }
+  void add(const Vec3& x, const Vec3& y) { add(x, norm2(x), y, norm2(y)); }
   double degrees() const { return cos > 1.5 ? 0.0 : angle_between(a, b) * kRadToDeg; }
 };
 
@@ -171,35 +213,38 @@ Vec3 cap_normal(const Vec3* p, const int* v, int n) {
 // Column metrics shared by wedges (n = 3) and hexes (n = 4). bottom/top list the cap
 // nodes so that column edge i runs from bottom[i] to top[i] and the right-hand normal
 // of both lists points from the bottom cap to the top cap.
-void column_metrics(const Vec3* p, const int* bottom, const int* top, int n, CellMetrics* m) {
+void column_metrics(const Vec3* p, const int* bottom, const int* top, int n, const EdgeLengths& e,
+                    CellMetrics* m) {
   const Vec3 n_bottom = cap_normal(p, bottom, n);
   const Vec3 n_top = cap_normal(p, top, n);
+  const double n_bottom_n2 = norm2(n_bottom), n_top_n2 = norm2(n_top);
+  static constexpr int kNext[2][4] = {{1, 2, 0, -1}, {1, 2, 3, 0}};  // node after each cap node
+  const int* next = kNext[n - 3];
   double cap_edges = 0.0, column_edges = 0.0;
   LargestAngle worst;
   for (int i = 0; i < n; ++i) {
-    cap_edges += norm(p[bottom[(i + 1) % n]] - p[bottom[i]]) + norm(p[top[(i + 1) % n]] - p[top[i]]);
-    const Vec3 e = p[top[i]] - p[bottom[i]];
-    column_edges += norm(e);
-    worst.add(e, n_bottom);
-    worst.add(e, n_top);
+    cap_edges += e.len[bottom[i]][bottom[next[i]]] + e.len[top[i]][top[next[i]]];
+    const Vec3 col = p[top[i]] - p[bottom[i]];
+    const double col_n2 = e.n2[bottom[i]][top[i]];
+    column_edges += e.len[bottom[i]][top[i]];
+    worst.add(col, col_n2, n_bottom, n_bottom_n2);
+    worst.add(col, col_n2, n_top, n_top_n2);
   }
   const double cap_mean = cap_edges / (2 * n), column_mean = column_edges / n;
   m->aspect_ratio = column_mean > 0.0 ? cap_mean / column_mean : std::numeric_limits<double>::infinity();
   m->orthogonality_deg = worst.degrees();
 }
 
-void edge_ratio(CellType t, const Vec3* p, CellMetrics* m) {
-  const detail::CellFaces& cf = detail::cell_faces(t);
+// Longest over shortest edge (a NaN length is skipped, as std::min/max do).
+template <std::size_t N>
+double edge_ratio(const std::array<int, 2> (&edges)[N], const EdgeLengths& e) {
   double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
-  for (int f = 0; f < cf.n_faces; ++f) {
-    const detail::FaceDef& fd = cf.faces[f];
-    for (int i = 0; i < fd.n; ++i) {
-      const double l = norm(p[fd.v[(i + 1) % fd.n]] - p[fd.v[i]]);
-      lo = std::min(lo, l);
-      hi = std::max(hi, l);
-    }
+  for (const std::array<int, 2>& ab : edges) {
+    const double l = e.len[ab[0]][ab[1]];
+    lo = std::min(lo, l);
+    hi = std::max(hi, l);
   }
-  m->aspect_ratio = lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity();
+  return lo > 0.0 ? hi / lo : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace
@@ -215,8 +260,10 @@ double cell_volume(CellType type, const Vec3* p) {
 }
 
 CellMetrics compute_cell_metrics(CellType type, const Vec3* p) {
+  EdgeLengths e;
+  fill_edge_lengths(type, p, &e);
   CellMetrics m;
-  m.scaled_jacobian = scaled_jacobian(type, p);
+  m.scaled_jacobian = scaled_jacobian(type, p, e);
   m.volume = cell_volume(type, p);
 
   const detail::CellFaces& cf = detail::cell_faces(type);
@@ -235,13 +282,13 @@ CellMetrics compute_cell_metrics(CellType type, const Vec3* p) {
     // (0,2,1) and (3,5,4) both have right-hand normals pointing bottom to top.
     static constexpr int kBottom[3] = {0, 2, 1};
     static constexpr int kTop[3] = {3, 5, 4};
-    column_metrics(p, kBottom, kTop, 3, &m);
+    column_metrics(p, kBottom, kTop, 3, e, &m);
   } else if (type == CellType::kHex) {
     static constexpr int kBottom[4] = {0, 1, 2, 3};
     static constexpr int kTop[4] = {4, 5, 6, 7};
-    column_metrics(p, kBottom, kTop, 4, &m);
+    column_metrics(p, kBottom, kTop, 4, e, &m);
   } else {
-    edge_ratio(type, p, &m);
+    m.aspect_ratio = type == CellType::kTet ? edge_ratio(kTetEdges, e) : edge_ratio(kPyramidEdges, e);
     m.orthogonality_deg = kNaN;
   }
   return m;
