@@ -113,25 +113,50 @@ double scaled_jacobian(CellType t, const Vec3* p, const EdgeLengths& e) {
 // Cosine of the angle between a and b from their squared lengths; both must be non-zero.
 double cosine(const Vec3& a, double a_n2, const Vec3& b, double b_n2) { return dot(a, b) / std::sqrt(a_n2 * b_n2); }
 
-// Equiangle skewness of a polygon face with n = 3 or 4 nodes. The extreme corners are
-// picked by cosine and only their angles are evaluated (atan2, accurate near 0 and 180).
-double face_skewness(const Vec3* p, const detail::FaceDef& f) {
-  const double ideal = f.n == 3 ? 60.0 : 90.0;
+// The two edge vectors at each corner of a face (n = 3 or 4 nodes): u[i] to the
+// previous node, w[i] to the next, both subtracted from the corner; n2[i] is the squared
+// length of edge i -> i + 1, so that of u[i] is n2[i - 1] and that of w[i] is n2[i].
+struct FaceCorners {
+  int n;
+  Vec3 u[4], w[4];
+  double n2[4];
+};
+
+// Tables instead of the modulo: the node before and after each corner.
+constexpr int kPrev[2][4] = {{2, 0, 1, -1}, {3, 0, 1, 2}};
+constexpr int kNext[2][4] = {{1, 2, 0, -1}, {1, 2, 3, 0}};
+
+FaceCorners face_corners(const Vec3* p, const detail::FaceDef& f, const EdgeLengths& e) {
+  FaceCorners fc;
+  fc.n = f.n;
+  const int* prev = kPrev[f.n - 3];
+  const int* next = kNext[f.n - 3];
+  for (int i = 0; i < f.n; ++i) {
+    const Vec3& b = p[f.v[i]];
+    fc.u[i] = p[f.v[prev[i]]] - b;
+    fc.w[i] = p[f.v[next[i]]] - b;
+    fc.n2[i] = e.n2[f.v[i]][f.v[next[i]]];
+  }
+  return fc;
+}
+
+// Equiangle skewness of a face. The extreme corners are picked by cosine and only their
+// angles are evaluated (atan2, accurate near 0 and 180).
+double face_skewness(const FaceCorners& fc) {
+  const double ideal = fc.n == 3 ? 60.0 : 90.0;
+  // A zero-length edge makes the face collapsed: worst skew.
+  for (int i = 0; i < fc.n; ++i)
+    if (fc.n2[i] == 0.0) return 1.0;
   int i_lo = 0, i_hi = 0;
   double cos_lo = -2.0, cos_hi = 2.0;  // cosine of the smallest / largest angle
-  Vec3 u[4], w[4];
-  for (int i = 0; i < f.n && i < 4; ++i) {
-    const Vec3& b = p[f.v[i]];
-    u[i] = p[f.v[(i + f.n - 1) % f.n]] - b;
-    w[i] = p[f.v[(i + 1) % f.n]] - b;
-    // A zero-length edge makes the face collapsed: worst skew.
-    if (norm2(u[i]) == 0.0 || norm2(w[i]) == 0.0) return 1.0;
-    const double c = cosine(u[i], norm2(u[i]), w[i], norm2(w[i]));
+  for (int i = 0; i < fc.n; ++i) {
+    const double c = cosine(fc.u[i], fc.n2[kPrev[fc.n - 3][i]], fc.w[i], fc.n2[i]);
     if (c > cos_lo) cos_lo = c, i_lo = i;
     if (c < cos_hi) cos_hi = c, i_hi = i;
   }
-  const double lo = angle_between(u[i_lo], w[i_lo]) * kRadToDeg;
-  const double hi = angle_between(u[i_hi], w[i_hi]) * kRadToDeg;
+  const double lo = angle_between(fc.u[i_lo], fc.w[i_lo]) * kRadToDeg;
+  // Equal cosines at every corner (a rectangle) pick the same corner twice.
+  const double hi = i_hi == i_lo ? lo : angle_between(fc.u[i_hi], fc.w[i_hi]) * kRadToDeg;
   return std::clamp(std::max((hi - ideal) / (180.0 - ideal), (ideal - lo) / ideal), 0.0, 1.0);
 }
 
@@ -149,10 +174,13 @@ struct LargestAngle {
   double degrees() const { return cos > 1.5 ? 0.0 : angle_between(a, b) * kRadToDeg; }
 };
 
-// Both diagonal splits of quad (a,b,c,d): the pairs of triangle normals.
-void add_quad_warp(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, LargestAngle* warp) {
-  warp->add(cross(b - a, c - a), cross(c - a, d - a));
-  warp->add(cross(c - b, d - b), cross(d - b, a - b));
+// Both diagonal splits of quad (a,b,c,d): the pairs of triangle normals. The face's
+// corner vectors give b - a, d - a (corner a) and c - b, a - b (corner b).
+void add_quad_warp(const Vec3* p, const detail::FaceDef& f, const FaceCorners& fc, LargestAngle* warp) {
+  const Vec3 ca = p[f.v[2]] - p[f.v[0]];
+  const Vec3 db = p[f.v[3]] - p[f.v[1]];
+  warp->add(cross(fc.w[0], ca), cross(ca, fc.u[0]));
+  warp->add(cross(fc.w[1], db), cross(db, fc.u[1]));
 }
 
 double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
@@ -218,7 +246,6 @@ void column_metrics(const Vec3* p, const int* bottom, const int* top, int n, con
   const Vec3 n_bottom = cap_normal(p, bottom, n);
   const Vec3 n_top = cap_normal(p, top, n);
   const double n_bottom_n2 = norm2(n_bottom), n_top_n2 = norm2(n_top);
-  static constexpr int kNext[2][4] = {{1, 2, 0, -1}, {1, 2, 3, 0}};  // node after each cap node
   const int* next = kNext[n - 3];
   double cap_edges = 0.0, column_edges = 0.0;
   LargestAngle worst;
@@ -271,9 +298,10 @@ CellMetrics compute_cell_metrics(CellType type, const Vec3* p) {
   LargestAngle warp;
   for (int f = 0; f < cf.n_faces; ++f) {
     const detail::FaceDef& fd = cf.faces[f];
+    const FaceCorners fc = face_corners(p, fd, e);
     const bool is_cap = f == cf.bottom_cap || f == cf.top_cap;
-    if (type != CellType::kWedge || is_cap) skew = std::max(skew, face_skewness(p, fd));
-    if (fd.n == 4) add_quad_warp(p[fd.v[0]], p[fd.v[1]], p[fd.v[2]], p[fd.v[3]], &warp);
+    if (type != CellType::kWedge || is_cap) skew = std::max(skew, face_skewness(fc));
+    if (fd.n == 4) add_quad_warp(p, fd, fc, &warp);
   }
   m.skewness = skew;
   m.twist_deg = warp.degrees();
