@@ -32,6 +32,9 @@ double triple(const Vec3& a, const Vec3& b, const Vec3& c) { return dot(a, cross
 struct EdgeLengths {
   double n2[8][8];
   double len[8][8];
+  // Every squared length in [1e-150, 1e150]: products of edge vectors neither overflow
+  // nor lose digits to underflow (see SkewFloors).
+  bool moderate = true;
 };
 
 constexpr std::array<int, 2> kTetEdges[] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
@@ -49,6 +52,7 @@ void fill_edge_lengths(const std::array<int, 2> (&edges)[N], const Vec3* p, Edge
     const double len = std::sqrt(n2);
     e->n2[a][b] = e->n2[b][a] = n2;
     e->len[a][b] = e->len[b][a] = len;
+    e->moderate &= n2 >= 1e-150 && n2 <= 1e150;
   }
 }
 
@@ -111,7 +115,9 @@ double scaled_jacobian(CellType t, const Vec3* p, const EdgeLengths& e) {
 }
 
 // Cosine of the angle between a and b from their squared lengths; both must be non-zero.
-double cosine(const Vec3& a, double a_n2, const Vec3& b, double b_n2) { return dot(a, b) / std::sqrt(a_n2 * b_n2); }
+double cosine(const Vec3& a, double a_n2, const Vec3& b, double b_n2) {
+  return dot(a, b) / std::sqrt(a_n2 * b_n2);
+}
 
 // The two edge vectors at each corner of a face (n = 3 or 4 nodes): u[i] to the
 // previous node, w[i] to the next, both subtracted from the corner; n2[i] is the squared
@@ -126,38 +132,104 @@ struct FaceCorners {
 constexpr int kPrev[2][4] = {{2, 0, 1, -1}, {3, 0, 1, 2}};
 constexpr int kNext[2][4] = {{1, 2, 0, -1}, {1, 2, 3, 0}};
 
-FaceCorners face_corners(const Vec3* p, const detail::FaceDef& f, const EdgeLengths& e) {
-  FaceCorners fc;
-  fc.n = f.n;
+void fill_face_corners(const Vec3* p, const detail::FaceDef& f, const EdgeLengths& e, FaceCorners* fc) {
+  fc->n = f.n;
   const int* prev = kPrev[f.n - 3];
   const int* next = kNext[f.n - 3];
   for (int i = 0; i < f.n; ++i) {
     const Vec3& b = p[f.v[i]];
-    fc.u[i] = p[f.v[prev[i]]] - b;
-    fc.w[i] = p[f.v[next[i]]] - b;
-    fc.n2[i] = e.n2[f.v[i]][f.v[next[i]]];
+    fc->u[i] = p[f.v[prev[i]]] - b;
+    fc->w[i] = p[f.v[next[i]]] - b;
+    fc->n2[i] = e.n2[f.v[i]][f.v[next[i]]];
   }
-  return fc;
 }
 
-// Equiangle skewness of a face. The extreme corners are picked by cosine and only their
-// angles are evaluated (atan2, accurate near 0 and 180).
-double face_skewness(const FaceCorners& fc) {
-  const double ideal = fc.n == 3 ? 60.0 : 90.0;
-  // A zero-length edge makes the face collapsed: worst skew.
+bool collapsed(const FaceCorners& fc) {
   for (int i = 0; i < fc.n; ++i)
-    if (fc.n2[i] == 0.0) return 1.0;
+    if (fc.n2[i] == 0.0) return true;
+  return false;
+}
+
+// The corners of a face with the smallest and the largest angle, picked by cosine.
+struct FaceExtremes {
   int i_lo = 0, i_hi = 0;
   double cos_lo = -2.0, cos_hi = 2.0;  // cosine of the smallest / largest angle
+};
+
+FaceExtremes face_extremes(const FaceCorners& fc) {
+  FaceExtremes x;
   for (int i = 0; i < fc.n; ++i) {
     const double c = cosine(fc.u[i], fc.n2[kPrev[fc.n - 3][i]], fc.w[i], fc.n2[i]);
-    if (c > cos_lo) cos_lo = c, i_lo = i;
-    if (c < cos_hi) cos_hi = c, i_hi = i;
+    if (c > x.cos_lo) x.cos_lo = c, x.i_lo = i;
+    if (c < x.cos_hi) x.cos_hi = c, x.i_hi = i;
   }
-  const double lo = angle_between(fc.u[i_lo], fc.w[i_lo]) * kRadToDeg;
-  // Equal cosines at every corner (a rectangle) pick the same corner twice.
-  const double hi = i_hi == i_lo ? lo : angle_between(fc.u[i_hi], fc.w[i_hi]) * kRadToDeg;
-  return std::clamp(std::max((hi - ideal) / (180.0 - ideal), (ideal - lo) / ideal), 0.0, 1.0);
+  return x;
+}
+
+// A face's skewness is the larger of two candidates: the largest angle's excess over
+// the ideal and the smallest angle's deficit. Each is an increasing function of a
+// cosine key (cos_lo for the smallest angle, -cos_hi for the largest) that grows at
+// least 3/(2 pi) times as fast as the key: asin over 90 degrees for both candidates of
+// a quad; over 120 and 60 degrees for a triangle's largest and smallest angle. A
+// candidate whose key trails the best key of its kind by 1e-9 is therefore smaller by
+// more than 4e-10, while the computed cosines and atan2 angles are within 1e-14 of
+// those of the computed edge vectors when the edge lengths are moderate
+// (EdgeLengths::moderate): it cannot be the cell's maximum, and leaving out its atan2
+// leaves the result the same number. Floors of -inf keep every candidate.
+struct SkewFloors {
+  double quad = -std::numeric_limits<double>::infinity();
+  double tri_lo = -std::numeric_limits<double>::infinity();
+  double tri_hi = -std::numeric_limits<double>::infinity();
+};
+
+SkewFloors skew_floors(const FaceCorners* fc, const FaceExtremes* x, const int* faces, int n_faces) {
+  constexpr double kKeyMargin = 1e-9;
+  SkewFloors floors;
+  for (int k = 0; k < n_faces; ++k) {
+    const FaceExtremes& e = x[faces[k]];
+    if (fc[faces[k]].n == 4) {
+      floors.quad = std::max({floors.quad, e.cos_lo - kKeyMargin, -e.cos_hi - kKeyMargin});
+    } else {
+      floors.tri_lo = std::max(floors.tri_lo, e.cos_lo - kKeyMargin);
+      floors.tri_hi = std::max(floors.tri_hi, -e.cos_hi - kKeyMargin);
+    }
+  }
+  return floors;
+}
+
+// Equiangle skewness of a face from the angles at its extreme corners (atan2, accurate
+// near 0 and 180), leaving out a candidate below its floor.
+double face_skewness(const FaceCorners& fc, const FaceExtremes& x, const SkewFloors& floors) {
+  const bool quad = fc.n == 4;
+  const double ideal = quad ? 90.0 : 60.0;
+  const auto degrees_at = [&fc](int i) { return angle_between(fc.u[i], fc.w[i]) * kRadToDeg; };
+  // A left-out candidate stays -inf and loses std::max to the other (0 after the clamp
+  // if both are left out).
+  double deficit = -std::numeric_limits<double>::infinity(), excess = deficit;
+  const bool want_lo = x.cos_lo >= (quad ? floors.quad : floors.tri_lo);
+  const bool want_hi = -x.cos_hi >= (quad ? floors.quad : floors.tri_hi);
+  const double lo = want_lo ? degrees_at(x.i_lo) : 0.0;
+  if (want_lo) deficit = (ideal - lo) / ideal;
+  if (want_hi) {
+    // Equal cosines at every corner (a rectangle) pick the same corner twice.
+    const double hi = want_lo && x.i_hi == x.i_lo ? lo : degrees_at(x.i_hi);
+    excess = (hi - ideal) / (180.0 - ideal);
+  }
+  return std::clamp(std::max(excess, deficit), 0.0, 1.0);
+}
+
+// Largest skewness over the listed faces. A collapsed face (zero-length edge, never
+// with moderate edges) scores 1, the largest value any face can have.
+double cell_skewness(const FaceCorners* fc, const int* faces, int n_faces, bool moderate_edges) {
+  if (!moderate_edges)
+    for (int k = 0; k < n_faces; ++k)
+      if (collapsed(fc[faces[k]])) return 1.0;
+  FaceExtremes x[6];
+  for (int k = 0; k < n_faces; ++k) x[faces[k]] = face_extremes(fc[faces[k]]);
+  const SkewFloors floors = moderate_edges ? skew_floors(fc, x, faces, n_faces) : SkewFloors{};
+  double skew = 0.0;
+  for (int k = 0; k < n_faces; ++k) skew = std::max(skew, face_skewness(fc[faces[k]], x[faces[k]], floors));
+  return skew;
 }
 
 // Tracks the largest angle over vector pairs by cosine; one atan2 at the end. A pair
@@ -294,16 +366,17 @@ CellMetrics compute_cell_metrics(CellType type, const Vec3* p) {
   m.volume = cell_volume(type, p);
 
   const detail::CellFaces& cf = detail::cell_faces(type);
-  double skew = 0.0;
+  FaceCorners fc[6];
+  int skew_faces[6], n_skew = 0;
   LargestAngle warp;
   for (int f = 0; f < cf.n_faces; ++f) {
     const detail::FaceDef& fd = cf.faces[f];
-    const FaceCorners fc = face_corners(p, fd, e);
+    fill_face_corners(p, fd, e, &fc[f]);
     const bool is_cap = f == cf.bottom_cap || f == cf.top_cap;
-    if (type != CellType::kWedge || is_cap) skew = std::max(skew, face_skewness(fc));
-    if (fd.n == 4) add_quad_warp(p, fd, fc, &warp);
+    if (type != CellType::kWedge || is_cap) skew_faces[n_skew++] = f;
+    if (fd.n == 4) add_quad_warp(p, fd, fc[f], &warp);
   }
-  m.skewness = skew;
+  m.skewness = cell_skewness(fc, skew_faces, n_skew, e.moderate);
   m.twist_deg = warp.degrees();
 
   if (type == CellType::kWedge) {
