@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <tuple>
 #include <vector>
 
 #include "blayer/quality/cell_validity.h"
@@ -159,6 +162,58 @@ TEST(CellMetrics, WarpedHexFaceTwistIsTheAngleBetweenItsSplitNormals) {
   // Split along 5-7: normals of (5,6,7) = (-0.5,-0.5,1) and (5,7,4) = (0,0,1).
   const double split57 = std::acos(1.0 / std::sqrt(1.5)) * 180.0 / kPi;
   EXPECT_NEAR(m.twist_deg, std::max(split46, split57), 1e-10);
+}
+
+// Equiangle skewness from every corner angle of the given faces (atan2 at each corner),
+// the definition in cell_metrics.h without picking corners or faces by cosine.
+double reference_skewness(const std::vector<Vec3>& p, const std::vector<std::vector<int>>& faces) {
+  double skew = 0.0;
+  for (const std::vector<int>& f : faces) {
+    const int n = static_cast<int>(f.size());
+    const double ideal = n == 3 ? 60.0 : 90.0;
+    double lo = 180.0, hi = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const Vec3& b = p[f[i]];
+      const double a = angle_between(p[f[(i + n - 1) % n]] - b, p[f[(i + 1) % n]] - b) * 180.0 / kPi;
+      lo = std::min(lo, a);
+      hi = std::max(hi, a);
+    }
+    skew = std::max({skew, (hi - ideal) / (180.0 - ideal), (ideal - lo) / ideal});
+  }
+  return std::min(skew, 1.0);
+}
+
+// Affine images of the reference cells (congruent opposite faces, so nearly tied face
+// skewness) with some nodes moved: the faces and corners that decide the skewness are
+// picked by cosine, and the largest over all faces must still be found.
+TEST(CellMetrics, SkewnessIsTheLargestOverFacesOfEveryCornerAngle) {
+  const std::vector<std::vector<int>> tet_faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  const std::vector<std::vector<int>> pyramid_faces = {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  const std::vector<std::vector<int>> wedge_caps = {{0, 1, 2}, {3, 5, 4}};
+  const std::vector<std::vector<int>> hex_faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                   {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  const std::vector<std::tuple<CellType, std::vector<Vec3>, std::vector<std::vector<int>>>> cells = {
+      {CellType::kTet, test::unit_tet(), tet_faces},
+      {CellType::kPyramid, test::unit_pyramid(0.7), pyramid_faces},
+      {CellType::kWedge, test::right_prism(0.3), wedge_caps},
+      {CellType::kHex, test::unit_hex(), hex_faces}};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  for (const auto& [t, ref, faces] : cells) {
+    for (int k = 0; k < 2000; ++k) {
+      double a[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) a[r][c] = (r == c ? 1.0 : 0.0) + u(rng);
+      const double moved = k % 2 == 0 ? 0.0 : 0.2;  // every other cell also has its nodes moved
+      std::vector<Vec3> p;
+      for (const Vec3& x : ref) {
+        Vec3 y;
+        for (int r = 0; r < 3; ++r) y[r] = a[r][0] * x[0] + a[r][1] * x[1] + a[r][2] * x[2] + moved * u(rng);
+        p.push_back(y);
+      }
+      EXPECT_NEAR(metrics(t, p).skewness, reference_skewness(p, faces), 1e-9) << cell_type_name(t) << " " << k;
+    }
+  }
 }
 
 }  // namespace
