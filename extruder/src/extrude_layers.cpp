@@ -68,8 +68,9 @@ std::vector<char> growing(const ColumnState& c) {
 // column at a ridge end, whose fan on the front holds the strip ends' (still flat)
 // triangles, takes the wall's own normal at its point.
 StepDirections wall_directions(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
-                               const WallTopology& topo, const WallPlanes& planes, const ExtrusionParams& params) {
-  if (!layout.has_fans()) return compute_step_directions(layout.front, topo, topo.used, params);
+                               const WallTopology& topo, const WallPlanes& planes, const ExtrusionParams& params,
+                               WallNormalMemo* memo) {
+  if (!layout.has_fans()) return compute_step_directions(layout.front, topo, topo.used, params, nullptr, memo);
   PrescribedDirections fan{layout.direction, std::vector<double>(layout.n_columns(), 0.0)};
   for (const LayerElement& e : layout.elements) {
     if (e.kind != ElementKind::kStripEnd) continue;
@@ -80,7 +81,7 @@ StepDirections wall_directions(const TriSurface& wall, const WallTopology& wall_
   }
   for (int c = 0; c < layout.n_columns(); ++c)
     if (norm2(fan.n[c]) > 0.0) fan.visibility[c] = planes.visibility(c, fan.n[c]);
-  return compute_step_directions(layout.front, topo, topo.used, params, &fan);
+  return compute_step_directions(layout.front, topo, topo.used, params, &fan, memo);
 }
 
 // Fan points none of whose columns grew a layer because a cell, a collision or the
@@ -112,11 +113,13 @@ struct FanFailures {
 // stop_at_failed_fans, in layer 0.
 // wall_tree: the run's, built once for all attempts; freed here when the march
 // delivers its mesh, before the output arrays that set the peak memory. precheck: the
-// run's, which carries each round's verdicts to the next (fan_precheck.h).
+// run's, which carries each round's verdicts to the next (fan_precheck.h). normal_memo:
+// the run's wall normals of the earlier attempts (step_directions.h), or null.
 ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
                       const WallTopology& topo, const ExtrusionParams& params,
                       const std::function<void(int, int)>& progress, bool stop_at_failed_fans,
-                      std::unique_ptr<WallTree>* wall_tree, FanPrecheck* precheck, FanFailures* fan_failures) {
+                      std::unique_ptr<WallTree>* wall_tree, FanPrecheck* precheck, FanFailures* fan_failures,
+                      WallNormalMemo* normal_memo) {
   const Stopwatch total;
   ExtrusionResult res;
   ExtrusionReport& rep = res.report;
@@ -129,7 +132,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   Stopwatch phase;
   const WallPlanes planes(wall, layout, topo);
   const TriSurface& start = layout.front;
-  StepDirections dirs = wall_directions(wall, wall_topo, layout, topo, planes, params);
+  StepDirections dirs = wall_directions(wall, wall_topo, layout, topo, planes, params, normal_memo);
   ColumnPlan plan = plan_column_heights(
       wall, wall_topo, topo, rep.growth, params, dirs,
       wall_proximity_rays(wall.triangles, wall.points, **wall_tree, &start.triangles, &layout.wall_point, topo.plane,
@@ -243,7 +246,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     const double t_before = total.seconds();
     ExtrusionResult res =
         march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &wall_tree, nullptr,
-              &none);
+              &none, nullptr);
     res.report.t_setup += t_before;
     res.report.t_total = total.seconds();
     return res;
@@ -254,6 +257,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   std::vector<char> excluded = wall_topo.on_plane;
   int n_fallback = 0, precheck_rounds = 0;
   FanPrecheck fan_precheck;
+  WallNormalMemo normal_memo;
   for (int attempt = 0;; ++attempt) {
     const ColumnLayout layout = build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded);
     const WallTopology column_topo = build_column_topology(layout, params.symmetry);
@@ -264,7 +268,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     const bool last_attempt = attempt + 1 >= kMaxFanAttempts;
     ExtrusionResult res =
         march(wall, wall_topo, layout, column_topo, params, progress, !last_attempt, &wall_tree,
-              &fan_precheck, &failures);
+              &fan_precheck, &failures, &normal_memo);
     std::vector<int>& precheck = failures.precheck;
     if (!precheck.empty()) {
       // Each round rebuilds the layout and its directions: when most fans fail, or

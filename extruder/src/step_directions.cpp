@@ -1,6 +1,7 @@
 #include "blayer/extruder/step_directions.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "blayer/normals/fan_geometry.h"
 #include "blayer/normals/vertex_normal.h"
@@ -51,18 +52,26 @@ void smoothing_pass(const WallTopology& topo, const std::vector<double>& raw_vis
   d->visibility.swap(next_vis);
 }
 
-// The point normal of the front at v alone (the per-vertex kernel of
-// compute_point_normals).
+// The normal of v's own fan on the front, ignoring a symmetry plane (the per-vertex
+// kernel of compute_point_normals).
+VertexNormal plain_fan_normal(const TriSurface& front, const WallTopology& topo, int v, NormalMethod method) {
+  const VertexFan& fan = topo.fans.fans[v];
+  std::vector<Vec3> ring;
+  ring.reserve(fan.ring.size());
+  for (int r : fan.ring) ring.push_back(front.points[r]);
+  FanGeometry g;
+  build_fan_geometry(front.points[v], ring, fan.closed, default_tolerances(), &g);
+  return compute_vertex_normal(g, method);
+}
+
+// The point normal of the front at v alone.
 VertexNormal front_normal(const TriSurface& front, const WallTopology& topo, int v, NormalMethod method) {
+  if (!topo.on_plane[v]) return plain_fan_normal(front, topo, v, method);
   const VertexFan& fan = topo.fans.fans[v];
   std::vector<Vec3> ring;
   ring.reserve(2 * fan.ring.size());
   for (int r : fan.ring) ring.push_back(front.points[r]);
   FanGeometry g;
-  if (!topo.on_plane[v]) {
-    build_fan_geometry(front.points[v], ring, fan.closed, default_tolerances(), &g);
-    return compute_vertex_normal(g, method);
-  }
   // A point on the symmetry plane: its fan is half of the symmetric fan the mirrored
   // model would give; that fan's normal is symmetric, i.e. in the plane (rounding
   // aside, removed by the projection). Ring r_0 .. r_m (r_0, r_m on the plane), then
@@ -73,6 +82,60 @@ VertexNormal front_normal(const TriSurface& front, const WallTopology& topo, int
   VertexNormal n = compute_vertex_normal(g, method);
   n.normal = normalized(plane.in_plane(n.normal));
   return n;
+}
+
+// Whether the memo's entry for v's wall point holds v's fan geometry, bit for bit.
+const WallNormalMemo::Entry* memo_entry(const WallNormalMemo& memo, const TriSurface& front,
+                                        const WallTopology& topo, int v) {
+  const int w = topo.wall_point[v];
+  if (w < 0 || w >= static_cast<int>(memo.by_wall_point.size())) return nullptr;
+  const WallNormalMemo::Entry& e = memo.by_wall_point[w];
+  const VertexFan& fan = topo.fans.fans[v];
+  if (e.points.size() != fan.ring.size() + 1 || e.closed != fan.closed) return nullptr;
+  if (std::memcmp(&e.points[0], &front.points[v], sizeof(Vec3)) != 0) return nullptr;
+  for (std::size_t i = 0; i < fan.ring.size(); ++i)
+    if (std::memcmp(&e.points[i + 1], &front.points[fan.ring[i]], sizeof(Vec3)) != 0) return nullptr;
+  return &e;
+}
+
+// plain_fan_normal for the points with `which` set (the others keep the status of an
+// empty fan), through the memo when one is given.
+std::vector<VertexNormal> plain_fan_normals(const TriSurface& front, const WallTopology& topo,
+                                            const std::vector<char>& which, NormalMethod method, WallNormalMemo* memo) {
+  const int nv = static_cast<int>(front.points.size());
+  std::vector<VertexNormal> out(nv);
+  for (VertexNormal& n : out) n.status = NormalStatus::kDegenerateFan;
+  std::vector<char> solved(nv, 0);
+  parallel_vertices(nv, [&](int v) {
+    if (!which[v]) return;
+    const WallNormalMemo::Entry* e = memo ? memo_entry(*memo, front, topo, v) : nullptr;
+    if (e) {
+      out[v] = e->normal;
+      return;
+    }
+    out[v] = plain_fan_normal(front, topo, v, method);
+    solved[v] = 1;
+  });
+  if (!memo) return out;
+  // Stored after the parallel pass, which only reads the memo.
+  for (int v = 0; v < nv; ++v) {
+    if (!which[v]) continue;
+    if (!solved[v]) {
+      ++memo->reused;
+      continue;
+    }
+    ++memo->solved;
+    const VertexFan& fan = topo.fans.fans[v];
+    const int w = topo.wall_point[v];
+    if (fan.ring.size() < kMemoMinValence || w < 0) continue;
+    if (w >= static_cast<int>(memo->by_wall_point.size())) memo->by_wall_point.resize(w + 1);
+    WallNormalMemo::Entry& e = memo->by_wall_point[w];
+    e.points.assign(1, front.points[v]);
+    for (int r : fan.ring) e.points.push_back(front.points[r]);
+    e.closed = fan.closed;
+    e.normal = out[v];
+  }
+  return out;
 }
 
 // Keeps a column on the symmetry plane in it.
@@ -157,25 +220,32 @@ double visibility_of(const StepDirections& d, const WallTopology& topo, int v, c
 
 StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
                                        const std::vector<char>& active, const ExtrusionParams& p,
-                                       const PrescribedDirections* prescribed) {
+                                       const PrescribedDirections* prescribed, WallNormalMemo* memo) {
   const int nv = static_cast<int>(front.points.size());
   std::vector<char> fixed;
   PointNormals pn;
-  if (!prescribed) {
+  if (!prescribed && !memo) {
     pn = compute_point_normals(front, topo.fans, p.normal_method);
   } else {
-    // The fan points' own fans on the wall are degenerate (their columns coincide):
-    // only the other points get the front's normal.
-    fixed.assign(nv, 0);
-    pn.normal.assign(nv, Vec3{0.0, 0.0, 0.0});
-    pn.status.assign(nv, NormalStatus::kNoVisibleDirection);
+    // With prescribed directions, the fan points' own fans on the wall are degenerate
+    // (their columns coincide): only the other points get the front's normal, and
+    // those on the symmetry plane get it below. Without, every point with a fan gets
+    // its fan's normal, as compute_point_normals gives it.
+    std::vector<char> which(nv, 0);
+    if (prescribed) fixed.assign(nv, 0);
     parallel_vertices(nv, [&](int v) {
-      fixed[v] = norm2(prescribed->n[v]) > 0.0;
-      if (fixed[v] || topo.on_plane[v] || topo.vertex_triangles.count(v) == 0) return;
-      const VertexNormal n = front_normal(front, topo, v, p.normal_method);
-      pn.normal[v] = n.normal;
-      pn.status[v] = n.status;
+      if (prescribed) fixed[v] = norm2(prescribed->n[v]) > 0.0;
+      which[v] = prescribed ? !fixed[v] && !topo.on_plane[v] && topo.vertex_triangles.count(v) > 0
+                            : v < static_cast<int>(topo.fans.fans.size()) && !topo.fans.fans[v].triangles.empty();
     });
+    const std::vector<VertexNormal> fan_normals = plain_fan_normals(front, topo, which, p.normal_method, memo);
+    pn.normal.assign(nv, Vec3{0.0, 0.0, 0.0});
+    pn.status.assign(nv, prescribed ? NormalStatus::kNoVisibleDirection : NormalStatus::kDegenerateFan);
+    for (int v = 0; v < nv; ++v)
+      if (which[v]) {
+        pn.normal[v] = fan_normals[v].normal;
+        pn.status[v] = fan_normals[v].status;
+      }
   }
   parallel_vertices(nv, [&](int v) {
     if (!topo.on_plane[v] || !active[v]) return;

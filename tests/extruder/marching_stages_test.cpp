@@ -155,6 +155,37 @@ TEST(StepDirections, SmoothingNeverLowersVisibilityBelowTheRawDirection) {
   }
 }
 
+// The memo of a run's wall normals: a point's stored normal is taken while its fan is
+// bitwise unchanged, and solved again (to the memo-free answer) once a ring point moves.
+// Only fans of kMemoMinValence or more are stored: the uv sphere's two poles (16).
+TEST(StepDirections, MemoReusesAPointsNormalOnlyWhileItsFanIsUnchanged) {
+  TriSurface wall = test_surfaces::uv_sphere(8, 16, 1.0, 0.0);
+  const WallTopology topo = build_wall_topology(wall);
+  const ExtrusionParams p = test::growth_params(1, 0.01, 1.0);
+  std::vector<int> poles;
+  for (int v = 0; v < topo.n_points(); ++v)
+    if (topo.fans.fans[v].ring.size() >= kMemoMinValence) poles.push_back(v);
+  ASSERT_EQ(poles.size(), 2u);
+  auto same = [](const StepDirections& a, const StepDirections& b) {
+    return a.n == b.n && a.visibility == b.visibility && a.ok == b.ok;
+  };
+  WallNormalMemo memo;
+  EXPECT_TRUE(same(compute_step_directions(wall, topo, topo.used, p, nullptr, &memo),
+                   compute_step_directions(wall, topo, topo.used, p)));
+  EXPECT_EQ(memo.reused, 0);
+  EXPECT_TRUE(same(compute_step_directions(wall, topo, topo.used, p, nullptr, &memo),
+                   compute_step_directions(wall, topo, topo.used, p)));
+  EXPECT_EQ(memo.reused, 2);
+  // One ring point of the first pole moves: that pole is solved again, the other reused.
+  wall.points[topo.fans.fans[poles[0]].ring[0]][2] *= 1.01;
+  const long solved = memo.solved;
+  const StepDirections moved = compute_step_directions(wall, topo, topo.used, p, nullptr, &memo);
+  const StepDirections fresh = compute_step_directions(wall, topo, topo.used, p);
+  EXPECT_TRUE(same(moved, fresh));
+  EXPECT_EQ(memo.reused, 3);
+  EXPECT_EQ(memo.solved - solved, topo.n_points() - 1);
+}
+
 TEST(StepDirections, RepairTurnsAFailingColumnTowardsItsNeighbours) {
   const TriSurface wall = flat_grid(2);
   const WallTopology topo = build_wall_topology(wall);

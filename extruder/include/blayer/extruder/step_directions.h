@@ -34,9 +34,29 @@ struct PrescribedDirections {
   std::vector<Vec3> n;
   std::vector<double> visibility;
 };
+//
+// memo (optional): the fan normals of a run's earlier attempts on the wall
+// (extrude_layers.cpp marches again after fan points fall back), by wall point. A point
+// whose fan geometry (the point, its ring's points in order, and whether the ring
+// closes) is bitwise the one stored takes the stored normal, a pure function of that
+// geometry; the others are solved and stored. Only fans of at least kMemoMinValence
+// triangles are kept: smaller ones solve in microseconds.
+struct WallNormalMemo {
+  struct Entry {
+    std::vector<Vec3> points;  // the point, then its ring
+    bool closed = false;
+    VertexNormal normal;
+  };
+  std::vector<Entry> by_wall_point;
+  long reused = 0;  // normals taken from the memo, over the run
+  long solved = 0;  // fan normals solved while a memo was given
+};
+constexpr std::size_t kMemoMinValence = 10;
+
 StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
                                        const std::vector<char>& active, const ExtrusionParams& p,
-                                       const PrescribedDirections* prescribed = nullptr);
+                                       const PrescribedDirections* prescribed = nullptr,
+                                       WallNormalMemo* memo = nullptr);
 
 // The point normal (normal_method) of surface s at point v alone, with topo =
 // build_wall_topology(s); a point on the symmetry plane gets the normal of its fan
