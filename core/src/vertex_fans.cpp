@@ -36,6 +36,7 @@ VertexFans build_vertex_fans(const TriSurface& s) {
     }
   }
 
+  std::vector<char> used;
   for (int v = 0; v < nv; ++v) {
     const int b = start[v], e = start[v + 1], n = e - b;
     if (n == 0) continue;
@@ -61,9 +62,13 @@ VertexFans build_vertex_fans(const TriSurface& s) {
       }
     }
     bool ok = n_starts <= 1;
+    // Sized once: growing the ring and triangle lists by push_back cost more than
+    // building the fans themselves.
     VertexFan fan;
+    fan.ring.reserve(n + 1);
+    fan.triangles.reserve(n);
     int cur = first;
-    std::vector<char> used(n, 0);
+    used.assign(n, 0);
     for (int step = 0; ok && step < n; ++step) {
       if (cur < 0 || used[cur - b]) {
         ok = false;
