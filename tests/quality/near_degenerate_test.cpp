@@ -54,6 +54,21 @@ Validity classify(const std::vector<Vec3>& p, Sign sign, CellType type = CellTyp
   return split_min <= 0 ? Validity::kTwisted : Validity::kValid;
 }
 
+// The reference cell of every type.
+std::vector<std::pair<CellType, std::vector<Vec3>>> reference_cells() {
+  return {{CellType::kTet, test::unit_tet()},
+          {CellType::kPyramid, test::unit_pyramid()},
+          {CellType::kWedge, test::right_prism()},
+          {CellType::kHex, test::unit_hex()}};
+}
+
+// Both validity entry points give `expected` for the cell.
+void expect_verdict(CellType type, const std::vector<Vec3>& cell, Validity expected, int trial) {
+  ASSERT_EQ(cell_validity(type, cell.data()), expected) << "type " << static_cast<int>(type) << " trial " << trial;
+  ASSERT_EQ(cell_is_valid(type, cell.data()), expected == Validity::kValid)
+      << "type " << static_cast<int>(type) << " trial " << trial;
+}
+
 TEST(NearDegeneratePrism, RelativeHeightOneInTenToTheTwelveIsValidAndItsMirrorInverted) {
   // A tilted wall triangle far from the origin, extruded along its normal by 1e-12
   // times its edge length.
@@ -129,11 +144,7 @@ TEST(NearDegenerateCells, LatticeCellsOfEveryTypeGetTheExactVerdict) {
   // each node's own (twisted cells, mixed verdicts). Integer coordinates keep the
   // 128-bit oracle exact; the verdicts hang on single lattice steps.
   LatticeDraws draw(7);
-  const std::pair<CellType, std::vector<Vec3>> cells[] = {{CellType::kTet, test::unit_tet()},
-                                                          {CellType::kPyramid, test::unit_pyramid()},
-                                                          {CellType::kWedge, test::right_prism()},
-                                                          {CellType::kHex, test::unit_hex()}};
-  for (const auto& [type, ref] : cells) {
+  for (const auto& [type, ref] : reference_cells()) {
     int by_class[4] = {0, 0, 0, 0};
     for (int trial = 0; trial < 2000; ++trial) {
       std::int64_t a[3], p[3], q[3];
@@ -152,9 +163,7 @@ TEST(NearDegenerateCells, LatticeCellsOfEveryTypeGetTheExactVerdict) {
         }
       }
       const Validity exact = classify(cell, exact_sign, type);
-      ASSERT_EQ(cell_validity(type, cell.data()), exact) << "type " << static_cast<int>(type) << " trial " << trial;
-      ASSERT_EQ(cell_is_valid(type, cell.data()), exact == Validity::kValid)
-          << "type " << static_cast<int>(type) << " trial " << trial;
+      ASSERT_NO_FATAL_FAILURE(expect_verdict(type, cell, exact, trial));
       ++by_class[static_cast<int>(exact)];
     }
     // Meaningful only if the lattice steps produce valid, flat and inverted cells.
@@ -172,11 +181,7 @@ TEST(NearDegenerateCells, DistortedCellsOfEveryTypeGetTheVerdictOfTheirTetSigns)
   // tets' exact signs taken one by one.
   std::mt19937 rng(99);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const std::pair<CellType, std::vector<Vec3>> cells[] = {{CellType::kTet, test::unit_tet()},
-                                                          {CellType::kPyramid, test::unit_pyramid()},
-                                                          {CellType::kWedge, test::right_prism()},
-                                                          {CellType::kHex, test::unit_hex()}};
-  for (const auto& [type, ref] : cells) {
+  for (const auto& [type, ref] : reference_cells()) {
     int by_class[4] = {0, 0, 0, 0};
     for (int trial = 0; trial < 20000; ++trial) {
       const double spread = std::pow(10.0, -6.0 + 6.0 * (trial % 100) / 100.0);
@@ -188,9 +193,7 @@ TEST(NearDegenerateCells, DistortedCellsOfEveryTypeGetTheVerdictOfTheirTetSigns)
         cell[k] = origin + 0.1 * r + 0.1 * spread * Vec3{unit(rng), unit(rng), unit(rng)};
       }
       const Validity expected = classify(cell, orient3d_sign, type);
-      ASSERT_EQ(cell_validity(type, cell.data()), expected) << "type " << static_cast<int>(type) << " trial " << trial;
-      ASSERT_EQ(cell_is_valid(type, cell.data()), expected == Validity::kValid)
-          << "type " << static_cast<int>(type) << " trial " << trial;
+      ASSERT_NO_FATAL_FAILURE(expect_verdict(type, cell, expected, trial));
       ++by_class[static_cast<int>(expected)];
     }
     // Meaningful only if both valid cells and failing ones occur (a tet has no split to
