@@ -209,24 +209,14 @@ bool certainly_valid(CellType type, const Vec3* p) {
   const double threshold = cell_threshold(p, corner_count(type));
   if (threshold < 0.0) return false;
   const PlaneCover& cover = plane_cover(type);
-  double minors[kHexTetCount][3];
+  // cross and dot evaluate the minors and the expansion in orient3d_sides' order.
+  Vec3 minors[kHexTetCount];
   for (std::size_t i = 0; i < cover.planes.size(); ++i) {
     const Vec3& a = p[cover.planes[i][0]];
-    const Vec3& b = p[cover.planes[i][1]];
-    const Vec3& c = p[cover.planes[i][2]];
-    const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
-    const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
-    minors[i][0] = by * cz - bz * cy;
-    minors[i][1] = bz * cx - bx * cz;
-    minors[i][2] = bx * cy - by * cx;
+    minors[i] = cross(p[cover.planes[i][1]] - a, p[cover.planes[i][2]] - a);
   }
   double lowest = std::numeric_limits<double>::infinity();
-  for (const TetOnPlane& t : cover.tets) {
-    const Vec3& a = p[t.a];
-    const Vec3& q = p[t.q];
-    const double* m = minors[t.plane];
-    lowest = std::min(lowest, t.parity * ((q[0] - a[0]) * m[0] + (q[1] - a[1]) * m[1] + (q[2] - a[2]) * m[2]));
-  }
+  for (const TetOnPlane& t : cover.tets) lowest = std::min(lowest, t.parity * dot(p[t.q] - p[t.a], minors[t.plane]));
   return lowest > threshold;
 }
 
