@@ -223,30 +223,26 @@ StepDirections compute_step_directions(const TriSurface& front, const WallTopolo
                                        const PrescribedDirections* prescribed, WallNormalMemo* memo) {
   const int nv = static_cast<int>(front.points.size());
   std::vector<char> fixed;
+  // With prescribed directions, the fan points' own fans on the wall are degenerate
+  // (their columns coincide): only the other points get the front's normal, and those
+  // on the symmetry plane get it below. Without, every point with a fan gets its fan's
+  // normal, as compute_point_normals gives it.
+  std::vector<char> which(nv, 0);
+  if (prescribed) fixed.assign(nv, 0);
+  parallel_vertices(nv, [&](int v) {
+    if (prescribed) fixed[v] = norm2(prescribed->n[v]) > 0.0;
+    which[v] = prescribed ? !fixed[v] && !topo.on_plane[v] && topo.vertex_triangles.count(v) > 0
+                          : v < static_cast<int>(topo.fans.fans.size()) && !topo.fans.fans[v].triangles.empty();
+  });
+  const std::vector<VertexNormal> fan_normals = plain_fan_normals(front, topo, which, p.normal_method, memo);
   PointNormals pn;
-  if (!prescribed && !memo) {
-    pn = compute_point_normals(front, topo.fans, p.normal_method);
-  } else {
-    // With prescribed directions, the fan points' own fans on the wall are degenerate
-    // (their columns coincide): only the other points get the front's normal, and
-    // those on the symmetry plane get it below. Without, every point with a fan gets
-    // its fan's normal, as compute_point_normals gives it.
-    std::vector<char> which(nv, 0);
-    if (prescribed) fixed.assign(nv, 0);
-    parallel_vertices(nv, [&](int v) {
-      if (prescribed) fixed[v] = norm2(prescribed->n[v]) > 0.0;
-      which[v] = prescribed ? !fixed[v] && !topo.on_plane[v] && topo.vertex_triangles.count(v) > 0
-                            : v < static_cast<int>(topo.fans.fans.size()) && !topo.fans.fans[v].triangles.empty();
-    });
-    const std::vector<VertexNormal> fan_normals = plain_fan_normals(front, topo, which, p.normal_method, memo);
-    pn.normal.assign(nv, Vec3{0.0, 0.0, 0.0});
-    pn.status.assign(nv, prescribed ? NormalStatus::kNoVisibleDirection : NormalStatus::kDegenerateFan);
-    for (int v = 0; v < nv; ++v)
-      if (which[v]) {
-        pn.normal[v] = fan_normals[v].normal;
-        pn.status[v] = fan_normals[v].status;
-      }
-  }
+  pn.normal.assign(nv, Vec3{0.0, 0.0, 0.0});
+  pn.status.assign(nv, prescribed ? NormalStatus::kNoVisibleDirection : NormalStatus::kDegenerateFan);
+  for (int v = 0; v < nv; ++v)
+    if (which[v]) {
+      pn.normal[v] = fan_normals[v].normal;
+      pn.status[v] = fan_normals[v].status;
+    }
   parallel_vertices(nv, [&](int v) {
     if (!topo.on_plane[v] || !active[v]) return;
     const VertexNormal n = front_normal(front, topo, v, p.normal_method);
