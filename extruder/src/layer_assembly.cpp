@@ -93,10 +93,12 @@ VolumeMesh LayerAssembler::finish(const ColumnState& columns) {
     layers.values[p] = columns.layers[v];
     fan.values[p] = in_fan_[v];
   }
-  mesh_.point_data = {std::move(normal), std::move(height), std::move(reason), std::move(layers), std::move(fan)};
-  mesh_.cell_data = {DataArray{"layer", 1, true, std::vector<double>(cell_layer_.begin(), cell_layer_.end())}};
-  point_normal_ = {};
-  cell_layer_ = {};
+  // Freed before the cell array is built. Assigning {} would keep their capacity, and a
+  // brace list would copy every array: both held the peak memory of a run.
+  std::vector<Vec3>().swap(point_normal_);
+  for (DataArray* a : {&normal, &height, &reason, &layers, &fan}) mesh_.point_data.push_back(std::move(*a));
+  mesh_.cell_data.push_back(DataArray{"layer", 1, true, std::vector<double>(cell_layer_.begin(), cell_layer_.end())});
+  std::vector<int>().swap(cell_layer_);
   return std::move(mesh_);
 }
 
