@@ -56,6 +56,7 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
     ++n_grown;
   }
   columns_per_layer_.push_back(n_grown);
+  require_indexable_points(mesh_.points.size(), "layer " + std::to_string(k + 1));
   for (std::size_t i_e = 0; i_e < elements_.size(); ++i_e) {
     LayerCell cells[2];
     const int n_cells = element_layer_cells(

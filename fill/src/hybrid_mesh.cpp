@@ -25,6 +25,7 @@ std::vector<std::int64_t> append_fill(const FillResult& fill, const std::vector<
     to_mesh[i] = static_cast<std::int64_t>(mesh->points.size());
     mesh->points.push_back(fill.tets.points[i]);
   }
+  require_indexable_points(mesh->points.size(), "layers and fill");
   const std::size_t n_layer_cells = mesh->n_cells();
   for (std::size_t c = 0; c < fill.tets.n_cells(); ++c) {
     BLAYER_ASSERT(fill.tets.cell_types[c] == CellType::kTet);
@@ -59,7 +60,7 @@ std::vector<Triangle> other_faces_in_plane(const VolumeMesh& mesh, const Symmetr
     if (on[t[0]] && on[t[1]] && on[t[2]]) seen.insert(sorted_triangle(t[0], t[1], t[2]));
   std::vector<Triangle> out;
   for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
-    const std::int64_t* n = &mesh.connectivity[mesh.offsets[c]];
+    const PointId* n = mesh.cell_nodes(c);
     const int nn = corner_count(mesh.cell_types[c]);
     if (std::count_if(n, n + nn, [&](std::int64_t v) { return on[v]; }) < 3) continue;
     const CellFaceTable& table = cell_face_table(mesh.cell_types[c]);

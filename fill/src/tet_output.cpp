@@ -19,7 +19,7 @@ struct FaceRef {
 };
 
 // Parity of the permutation that takes `nodes` to `order`.
-bool even_permutation(const std::int64_t* nodes, const std::array<std::int64_t, 4>& order) {
+bool even_permutation(const PointId* nodes, const std::array<std::int64_t, 4>& order) {
   int pos[4];
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
@@ -75,10 +75,10 @@ std::vector<std::int64_t> output_index(const FillPlc& plc, std::int64_t n_out, s
 // TetGen's tets all have one (exactly computed) orientation; it is read from the tet
 // with the largest |volume|, where double rounding cannot flip the sign, and turned
 // positive for all.
-void orient_positive(const std::vector<Vec3>& points, std::vector<std::int64_t>& conn) {
+void orient_positive(const std::vector<Vec3>& points, std::vector<PointId>& conn) {
   const std::int64_t n_tets = static_cast<std::int64_t>(conn.size() / 4);
   auto tet_det = [&](std::int64_t t) {
-    const std::int64_t* c = &conn[4 * t];
+    const PointId* c = &conn[4 * t];
     return det3(points[c[0]], points[c[1]], points[c[2]], points[c[3]]);
   };
   std::int64_t largest = 0;
@@ -89,7 +89,7 @@ void orient_positive(const std::vector<Vec3>& points, std::vector<std::int64_t>&
 }
 
 // Faces of the tets used by exactly one tet, sorted by key; throws on a face of three.
-std::vector<FaceRef> single_faces(const std::vector<std::int64_t>& conn) {
+std::vector<FaceRef> single_faces(const std::vector<PointId>& conn) {
   const std::int64_t n_tets = static_cast<std::int64_t>(conn.size() / 4);
   std::vector<FaceRef> faces;
   faces.reserve(4 * static_cast<std::size_t>(n_tets));
@@ -129,7 +129,8 @@ void assemble_fill_result(const TriSurface& envelope, const OuterBoundary& outer
 
   const std::int64_t n_tets = static_cast<std::int64_t>(mesh.tets.size() / 4);
   if (n_tets == 0) throw InputError("tetgen failed: it returned no tetrahedra");
-  std::vector<std::int64_t> conn(mesh.tets.size());
+  require_indexable_points(vm.points.size(), "tet fill");
+  std::vector<PointId> conn(mesh.tets.size());
   for (std::size_t i = 0; i < mesh.tets.size(); ++i) {
     if (mesh.tets[i] < 0 || mesh.tets[i] >= n_out)
       throw InputError("tetgen failed: a tetrahedron refers to a point it did not return");
@@ -158,7 +159,7 @@ void assemble_fill_result(const TriSurface& envelope, const OuterBoundary& outer
 }
 
 void check_conformity(const FillResult& result) {
-  const std::vector<std::int64_t>& conn = result.tets.connectivity;
+  const std::vector<PointId>& conn = result.tets.connectivity;
   const std::vector<FaceRef> single = single_faces(conn);
   std::vector<std::pair<TriangleKey, std::size_t>> bnd;
   for (std::size_t b = 0; b < result.boundary.triangles.size(); ++b) {
@@ -175,7 +176,7 @@ void check_conformity(const FillResult& result) {
     }
     // The tet on this boundary triangle must lie on the side its normal points to.
     const Triangle& t = result.boundary.triangles[bnd[i].second];
-    const std::int64_t* c = &conn[4 * single[j].tet];
+    const PointId* c = &conn[4 * single[j].tet];
     std::int64_t d = -1;
     for (int k = 0; k < 4; ++k)
       if (c[k] != t[0] && c[k] != t[1] && c[k] != t[2]) d = c[k];
@@ -200,7 +201,7 @@ void add_quality_stats(FillResult* result) {
   st.max_radius_edge = 0.0;
   st.min_tet_volume = std::numeric_limits<double>::max();
   for (std::size_t t = 0; t < vm.n_cells(); ++t) {
-    const std::int64_t* c = &vm.connectivity[4 * t];
+    const PointId* c = &vm.connectivity[4 * t];
     Vec3 p[4];
     for (int k = 0; k < 4; ++k) p[k] = vm.points[c[k]];
     double dihedral, radius_edge;

@@ -103,7 +103,7 @@ cgsize_t write_volume_sections(const CgnsFile& f, int base, int zone, const Solv
     conn.clear();
     for (std::size_t c = 0; c < m.cells.n_cells(); ++c) {
       if (m.cells.cell_types[c] != s.type) continue;
-      const std::int64_t* nodes = m.cells.connectivity.data() + m.cells.offsets[c];
+      const PointId* nodes = m.cells.cell_nodes(c);
       for (int k = 0; k < n; ++k) conn.push_back(static_cast<cgsize_t>(nodes[s.from_vtk[k]] + 1));
     }
     if (conn.empty()) continue;

@@ -32,7 +32,7 @@ struct CellFace {
 
 CellFace cell_face(const VolumeMesh& mesh, std::size_t cell, int local) {
   const CellFaceTable& table = cell_face_table(mesh.cell_types[cell]);
-  const std::int64_t* corners = mesh.connectivity.data() + mesh.offsets[cell];
+  const PointId* corners = mesh.cell_nodes(cell);
   CellFace f;
   f.n = table.n_corners[local];
   for (int k = 0; k < f.n; ++k) f.nodes[k] = corners[table.corners[local][k]];

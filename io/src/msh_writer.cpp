@@ -86,7 +86,7 @@ void write_elements(TextOutput& out, const SolverMesh& m) {
     const int n = corner_count(t.cell);
     for (std::size_t c = 0; c < m.cells.n_cells(); ++c) {
       if (m.cells.cell_types[c] != t.cell) continue;
-      const std::int64_t* nodes = m.cells.connectivity.data() + m.cells.offsets[c];
+      const PointId* nodes = m.cells.cell_nodes(c);
       out << tag++;
       for (int k = 0; k < n; ++k) out << ' ' << nodes[t.from_vtk[k]] + 1;
       out << '\n';

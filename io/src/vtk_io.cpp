@@ -178,6 +178,7 @@ VolumeMeshFile read_volume_mesh(const std::string& path) {
     throw InputError(path + ": unknown volume mesh format '" + ext + "' (expected .vtu or .vtk)");
   }
   if (!grid || grid->GetNumberOfPoints() == 0) throw InputError(path + ": the mesh has no points");
+  require_indexable_points(static_cast<std::size_t>(grid->GetNumberOfPoints()), path);
 
   VolumeMeshFile out;
   VolumeMesh& m = out.mesh;

@@ -73,6 +73,14 @@ ArraySource raw_source(const std::string& name, const char* type, int n_componen
           }};
 }
 
+// The connectivity's 32-bit ids as Int64, VTK's own id type, which every reader takes.
+ArraySource widened_ids(const std::string& name, const std::vector<PointId>& ids) {
+  const PointId* data = ids.data();
+  return {name, "Int64", 1, 8, ids.size(), [data](std::size_t first, std::size_t count, unsigned char* out) {
+            convert<std::int64_t>(data + first, count, out);
+          }};
+}
+
 vtkSmartPointer<vtkDataCompressor> make_compressor(VtkCompressor c) {
   vtkSmartPointer<vtkDataCompressor> z;
   if (c == VtkCompressor::kLz4) {
@@ -258,7 +266,7 @@ void write_vtu_blocks(const VolumeMesh& mesh, const std::string& path, const std
                          3 * mesh.points.size()),
               compressor);
   out << "      </Points>\n      <Cells>\n";
-  write_array(out, raw_source("connectivity", "Int64", 1, mesh.connectivity.data(), mesh.connectivity.size()),
+  write_array(out, widened_ids("connectivity", mesh.connectivity),
               compressor);
   // VTK's offsets are the cells' ends: mesh.offsets without its leading 0.
   write_array(out, raw_source("offsets", "Int64", 1, mesh.offsets.data() + 1, n_cells), compressor);

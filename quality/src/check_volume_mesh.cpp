@@ -58,7 +58,7 @@ struct FaceKey {
 
 FaceKey face_key(const VolumeMesh& mesh, std::int64_t cell, int face) {
   const detail::FaceDef& fd = detail::cell_faces(mesh.cell_types[cell]).faces[face];
-  const std::int64_t* nodes = mesh.connectivity.data() + mesh.offsets[cell];
+  const PointId* nodes = mesh.cell_nodes(cell);
   FaceKey k;
   k.n = fd.n;
   std::array<std::int64_t, 4> v{};
@@ -102,10 +102,10 @@ FaceBuckets bucket_faces(const VolumeMesh& mesh) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_cells), [&](const auto& r) {
       for (std::size_t c = r.begin(); c < r.end(); ++c) {
         const detail::CellFaces& cf = detail::cell_faces(mesh.cell_types[c]);
-        const std::int64_t* nodes = mesh.connectivity.data() + mesh.offsets[c];
+        const PointId* nodes = mesh.cell_nodes(c);
         for (int f = 0; f < cf.n_faces; ++f) {
           std::int64_t m = nodes[cf.faces[f].v[0]];
-          for (int i = 1; i < cf.faces[f].n; ++i) m = std::min(m, nodes[cf.faces[f].v[i]]);
+          for (int i = 1; i < cf.faces[f].n; ++i) m = std::min<std::int64_t>(m, nodes[cf.faces[f].v[i]]);
           fn(c, f, m);
         }
       }
@@ -318,7 +318,7 @@ MeshCheckReport check_volume_mesh(const VolumeMesh& mesh) {
     Vec3 p[8];
     for (std::size_t c = range.begin(); c < range.end(); ++c) {
       const CellType t = mesh.cell_types[c];
-      const std::int64_t* nodes = mesh.connectivity.data() + mesh.offsets[c];
+      const PointId* nodes = mesh.cell_nodes(c);
       bool finite = true;
       for (int i = 0; i < corner_count(t); ++i) {
         p[i] = mesh.points[nodes[i]];

@@ -51,7 +51,7 @@ class ColumnGraph {
       link_one(b, a);
     };
     for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
-      const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
+      const PointId* n = mesh.cell_nodes(c);
       if (mesh.cell_types[c] == CellType::kWedge) {
         for (const auto& e : kWedgeEdges) link(n[e[0]], n[e[1]]);
       } else if (mesh.cell_types[c] == CellType::kHex) {
@@ -159,7 +159,7 @@ std::unordered_map<std::int64_t, std::vector<int>> first_point_triangles(
       triangle_of[sorted_triangle(w[0], w[1], w[2])] = static_cast<int>(t);
   }
   for (std::size_t c = 0; c < mesh.n_cells(); ++c) {
-    const std::int64_t* n = mesh.connectivity.data() + mesh.offsets[c];
+    const PointId* n = mesh.cell_nodes(c);
     const bool wedge = mesh.cell_types[c] == CellType::kWedge;
     if (!wedge && mesh.cell_types[c] != CellType::kPyramid) continue;
     const TriangleKey base = wedge ? sorted_triangle(n[0], n[1], n[2]) : sorted_triangle(n[0], n[3], n[4]);

@@ -85,7 +85,7 @@ inline std::vector<Vec3> cell_corners(const VolumeMesh& m, std::size_t c) {
 
 // Faces of a cell in VTK order as node lists (orientation irrelevant here).
 inline std::vector<std::vector<std::int64_t>> cell_faces(const VolumeMesh& m, std::size_t c) {
-  const std::int64_t* n = m.connectivity.data() + m.offsets[c];
+  const PointId* n = m.cell_nodes(c);
   switch (m.cell_types[c]) {
     case CellType::kTet: return {{n[0], n[1], n[2]}, {n[0], n[1], n[3]}, {n[1], n[2], n[3]}, {n[0], n[2], n[3]}};
     case CellType::kPyramid:
@@ -122,7 +122,7 @@ inline double tet_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3
 // Each quad is split along the diagonal through its smallest node id, so a quad shared
 // by two cells is split the same way in both and the volumes add up exactly.
 inline double cell_volume_divergence(const VolumeMesh& m, std::size_t c) {
-  const std::int64_t* n = m.connectivity.data() + m.offsets[c];
+  const PointId* n = m.cell_nodes(c);
   std::vector<std::vector<std::int64_t>> faces;  // outward orientation
   switch (m.cell_types[c]) {
     case CellType::kTet: faces = {{n[0], n[2], n[1]}, {n[0], n[1], n[3]}, {n[1], n[2], n[3]}, {n[2], n[0], n[3]}}; break;

@@ -53,7 +53,7 @@ using FaceKey = std::array<std::int64_t, 3>;
 std::map<FaceKey, std::vector<Vec3>> cells_by_face(const VolumeMesh& m) {
   std::map<FaceKey, std::vector<Vec3>> faces;
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
-    const std::int64_t* n = &m.connectivity[m.offsets[c]];
+    const PointId* n = m.cell_nodes(c);
     const int nn = corner_count(m.cell_types[c]);
     Vec3 centroid{0, 0, 0};
     for (int k = 0; k < nn; ++k) centroid += m.points[n[k]];

@@ -49,7 +49,7 @@ inline MeshFigures check_fill(const FillResult& r) {
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
     EXPECT_EQ(m.cell_types[c], CellType::kTet);
     EXPECT_EQ(m.offsets[c + 1] - m.offsets[c], 4);
-    const std::int64_t* n = &m.connectivity[m.offsets[c]];
+    const PointId* n = m.cell_nodes(c);
     for (int k = 0; k < 4; ++k) {
       EXPECT_GE(n[k], 0);
       EXPECT_LT(n[k], np);

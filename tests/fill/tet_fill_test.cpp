@@ -34,7 +34,7 @@ double box_volume(const std::vector<Vec3>& pts, std::size_t begin) {
 }
 
 Vec3 centroid(const VolumeMesh& m, std::size_t c) {
-  const std::int64_t* n = &m.connectivity[m.offsets[c]];
+  const PointId* n = m.cell_nodes(c);
   return (m.points[n[0]] + m.points[n[1]] + m.points[n[2]] + m.points[n[3]]) / 4.0;
 }
 
@@ -201,7 +201,7 @@ TEST(TetFill, SizeGradesFromTheEnvelopeEdgeLengthToTheFarfield) {
   double near_sum = 0, far_sum = 0;
   int near_n = 0, far_n = 0;
   for (std::size_t c = 0; c < r.tets.n_cells(); ++c) {
-    const std::int64_t* n = &r.tets.connectivity[r.tets.offsets[c]];
+    const PointId* n = r.tets.cell_nodes(c);
     double longest = 0;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j)

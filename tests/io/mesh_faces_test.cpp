@@ -16,14 +16,16 @@ namespace {
 using testing::GridCell;
 using Key = std::vector<std::int64_t>;
 
-Vec3 centroid(const VolumeMesh& m, const std::int64_t* nodes, int n) {
+template <class Id>
+Vec3 centroid(const VolumeMesh& m, const Id* nodes, int n) {
   Vec3 c{0, 0, 0};
   for (int k = 0; k < n; ++k) c += m.points[nodes[k]];
   return c / double(n);
 }
 
 // Area vector of a polygon (sum of fan cross products, exact for planar faces).
-Vec3 area_vector(const VolumeMesh& m, const std::int64_t* nodes, int n) {
+template <class Id>
+Vec3 area_vector(const VolumeMesh& m, const Id* nodes, int n) {
   Vec3 a{0, 0, 0};
   for (int k = 1; k + 1 < n; ++k)
     a += 0.5 * cross(m.points[nodes[k]] - m.points[nodes[0]], m.points[nodes[k + 1]] - m.points[nodes[0]]);
@@ -34,7 +36,7 @@ TEST(CellFaceTable, EveryLocalFacePointsOutOfItsCellAndTheFacesClose) {
   const VolumeMesh m = testing::mixed_mesh();
   ASSERT_TRUE(check_volume_mesh(m).totals.inverted == 0);  // the oracle's cells are positive
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
-    const std::int64_t* corners = m.connectivity.data() + m.offsets[c];
+    const PointId* corners = m.cell_nodes(c);
     const Vec3 cell_centre = centroid(m, corners, corner_count(m.cell_types[c]));
     const CellFaceTable& t = cell_face_table(m.cell_types[c]);
     Vec3 closure{0, 0, 0};
@@ -104,7 +106,7 @@ void expect_matches_brute_force(const VolumeMesh& m) {
       EXPECT_EQ(faces.owner[i], it->second[0]);
     }
     // Oriented out of the owner: towards the neighbour's centre, away from the owner's.
-    const std::int64_t* own = m.connectivity.data() + m.offsets[faces.owner[i]];
+    const PointId* own = m.cell_nodes(faces.owner[i]);
     const Vec3 a = area_vector(m, faces.nodes[i].data(), faces.n_nodes[i]);
     const Vec3 fc = centroid(m, faces.nodes[i].data(), faces.n_nodes[i]);
     EXPECT_GT(dot(a, fc - centroid(m, own, corner_count(m.cell_types[faces.owner[i]]))), 0.0) << "face " << i;

@@ -14,7 +14,7 @@ using testing::GridCell;
 PatchTriangles bottom_triangles(const VolumeMesh& m, const std::string& name) {
   PatchTriangles p{name, PatchKind::kWall, {}};
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
-    const std::int64_t* n = m.connectivity.data() + m.offsets[c];
+    const PointId* n = m.cell_nodes(c);
     if (m.points[n[0]][2] == 0.0 && m.points[n[1]][2] == 0.0 && m.points[n[2]][2] == 0.0)
       p.triangles.push_back({n[0], n[1], n[2]});
   }
@@ -51,7 +51,7 @@ TEST(SolverMesh, PatchesWithNoFaceAreDroppedAndTheFirstListingWins) {
 TEST(SolverMesh, PointsNoCellUsesAreDroppedAndTheCellsRenumbered) {
   VolumeMesh m = testing::grid_mesh(1, 1, 1, GridCell::kHex);
   m.points.insert(m.points.begin(), Vec3{9, 9, 9});  // an unused point 0
-  for (std::int64_t& p : m.connectivity) ++p;
+  for (PointId& p : m.connectivity) ++p;
   const SolverMesh s = make_solver_mesh(m, {}, "rest");
   EXPECT_EQ(s.cells.points.size(), 8u);
   EXPECT_EQ(s.point_of_input[0], -1);
@@ -69,14 +69,14 @@ TEST(SolverMesh, AQuadFaceJoinsThePatchThatListsBothItsHalves) {
   PatchTriangles top{"top", PatchKind::kOpen, {}};
   int n_top = 0;
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
-    const std::int64_t* n = m.connectivity.data() + m.offsets[c] + 4;  // VTK hex top 4..7
+    const PointId* n = m.cell_nodes(c) + 4;  // VTK hex top 4..7
     if (n_top++ == 0)
       top.triangles.insert(top.triangles.end(), {{n[0], n[1], n[2]}, {n[2], n[3], n[0]}});
     else
       top.triangles.insert(top.triangles.end(), {{n[1], n[2], n[3]}, {n[3], n[0], n[1]}});
   }
   PatchTriangles half{"half", PatchKind::kWall, {}};
-  const std::int64_t* b = m.connectivity.data() + m.offsets[0];  // the first hex's bottom
+  const PointId* b = m.cell_nodes(0);  // the first hex's bottom
   half.triangles.push_back({b[0], b[1], b[2]});
   const SolverMesh s = make_solver_mesh(m, {top, half}, "rest");
   ASSERT_EQ(s.patches.size(), 2u);

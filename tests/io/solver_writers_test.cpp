@@ -40,7 +40,7 @@ SolverMesh patched(const VolumeMesh& m) {
   EXPECT_TRUE(check_volume_mesh(m).ok());
   PatchTriangles floor{"floor", PatchKind::kWall, {}};
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
-    const std::int64_t* n = m.connectivity.data() + m.offsets[c];
+    const PointId* n = m.cell_nodes(c);
     if (m.cell_types[c] == CellType::kWedge && m.points[n[0]][2] == 0.0) floor.triangles.push_back({n[0], n[1], n[2]});
   }
   return make_solver_mesh(m, {floor}, "sides");

@@ -4,9 +4,11 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "blayer/core/errors.h"
 #include "blayer/core/vec3.h"
 
 namespace blayer {
@@ -46,19 +48,38 @@ struct DataArray {
   bool single_precision = false;
 };
 
+// A point id in a cell's connectivity. 32 bits: the connectivity is the largest array
+// of a layer mesh, and 64-bit ids made it a fifth of a run's peak memory. Meshes of
+// 2^31 points and more (48 GiB of coordinates) are refused where they would be made
+// (kMaxMeshPoints). Offsets stay 64-bit: a mesh of 360M wedges has more corners.
+using PointId = std::int32_t;
+inline constexpr std::int64_t kMaxMeshPoints = std::numeric_limits<PointId>::max();
+
+// Throws InputError, "<what>: N points, more than a mesh can index", past kMaxMeshPoints.
+inline void require_indexable_points(std::size_t n, const std::string& what) {
+  if (n > static_cast<std::size_t>(kMaxMeshPoints))
+    throw InputError(what + ": " + std::to_string(n) + " points, more than a mesh can index (" +
+                     std::to_string(kMaxMeshPoints) + ")");
+}
+
 struct VolumeMesh {
   std::vector<Vec3> points;
   std::vector<CellType> cell_types;
   std::vector<std::int64_t> offsets{0};  // cell c uses connectivity[offsets[c], offsets[c+1])
-  std::vector<std::int64_t> connectivity;
+  std::vector<PointId> connectivity;
   std::vector<DataArray> point_data;
   std::vector<DataArray> cell_data;
 
   std::size_t n_cells() const { return cell_types.size(); }
 
-  void add_cell(CellType t, const std::int64_t* nodes) {
+  // The corners of cell c.
+  const PointId* cell_nodes(std::size_t c) const { return connectivity.data() + offsets[c]; }
+
+  // Ids of any integer type, each in [0, kMaxMeshPoints).
+  template <class Id>
+  void add_cell(CellType t, const Id* nodes) {
     cell_types.push_back(t);
-    connectivity.insert(connectivity.end(), nodes, nodes + corner_count(t));
+    for (int i = 0; i < corner_count(t); ++i) connectivity.push_back(static_cast<PointId>(nodes[i]));
     offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
   }
 
