@@ -169,8 +169,6 @@ FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, c
     cur_tree_.build(front_boxes);
   }
   new_tree_ = cur_tree_;
-  cur_boxes_.resize(nt_);
-  new_boxes_.resize(nt_);
   grows_.assign(nc_, 0);
   prev_grows_.assign(nc_, 0);
   moved_.assign(nc_, 0);
@@ -210,11 +208,10 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
   cur_points_ = &top;
   layers_ = &layers;
   if (k > 0) {
-    tbb::parallel_for(0, nt_, [&](int f) {
+    cur_tree_.refit_each([&](int f) {
       const Triangle& t = front_[f];
-      cur_boxes_[f] = Box::of_triangle(top[t[0]], top[t[1]], top[t[2]]);
+      return Box::of_triangle(top[t[0]], top[t[1]], top[t[2]]);
     });
-    cur_tree_.refit(cur_boxes_);
     unit_triangle_normals(front_, top, &cur_normal_);
   }
   if (check_collisions_) {
@@ -356,13 +353,12 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   tbb::parallel_for(0, nt_, [&](int f) {
     const Triangle& t = front_[f];
     new_tris_[f] = {new_id(t[0]), new_id(t[1]), new_id(t[2])};
-    new_boxes_[f] = soup_box(new_tris_[f]);
     // A triangle naming a point twice is no triangle: it is neither tested nor a partner.
     if (names_a_point_twice(new_tris_[f])) tri_grows_[f] = 0;
     query_[f] = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
     if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
   });
-  new_tree_.refit(new_boxes_);
+  new_tree_.refit_each([&](int f) { return soup_box(new_tris_[f]); });
   for (auto& l : crossing_) l.clear();
   // Every pair is found by descending two trees together (TriangleBvh): the new front
   // against the wall and the current front for the queried triangles, and against
@@ -455,8 +451,6 @@ void FrontChecker::release() {
   release(wall_tris_);
   release(cur_tris_);
   release(new_tris_);
-  release(cur_boxes_);
-  release(new_boxes_);
   release(cur_normal_);
   own_wall_.reset();
   wall_ = nullptr;

@@ -148,8 +148,10 @@ void TriangleBvh::build(const std::vector<Box>& boxes) {
 }
 
 void TriangleBvh::refit(const std::vector<Box>& boxes) {
-  const int n = static_cast<int>(items_.size());
-  tbb::parallel_for(0, n, [&](int i) { item_box_[i] = boxes[items_[i]]; });
+  refit_each([&](int item) { return boxes[item]; });
+}
+
+void TriangleBvh::refit_nodes() {
   // Nodes are in preorder (children after their parent), so a reverse sweep sees both
   // children of a node before the node itself.
   for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i) {

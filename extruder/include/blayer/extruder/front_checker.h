@@ -140,7 +140,6 @@ class FrontChecker {
   TriangleBvh cur_tree_, new_tree_;
   std::vector<Vec3> cur_normal_;
   const std::vector<Vec3>* cur_points_ = nullptr;
-  std::vector<Box> cur_boxes_, new_boxes_;
 
   std::vector<Vec3> soup_;
   std::vector<IndexedTriangle> wall_tris_, cur_tris_, new_tris_;

@@ -25,6 +25,8 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "blayer/core/vec3.h"
 
 namespace blayer {
@@ -61,6 +63,14 @@ class TriangleBvh {
   // the layout. The extruder's fronts share the wall's triangles and stay close to them
   // relative to the surface's extent, so the wall's layout serves every front.
   void refit(const std::vector<Box>& boxes);
+  // The same with item i's box given by box_of(i), so that callers need not keep the
+  // boxes of every item between refits.
+  template <class BoxOf>
+  void refit_each(BoxOf&& box_of) {
+    const int n = static_cast<int>(items_.size());
+    tbb::parallel_for(0, n, [&](int i) { item_box_[i] = box_of(items_[i]); });
+    refit_nodes();
+  }
 
   bool empty() const { return nodes_.empty(); }
 
@@ -162,6 +172,9 @@ class TriangleBvh {
   }
 
  private:
+  // Node boxes from the item boxes.
+  void refit_nodes();
+
   // Which of two nodes the pair traversals split: the larger by the sum of its box's
   // extents (volumes would tie at 0 for the flat boxes of axis-aligned faces).
   static double extent(const Box& b) { return (b.hi[0] - b.lo[0]) + (b.hi[1] - b.lo[1]) + (b.hi[2] - b.lo[2]); }
