@@ -203,7 +203,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
   wall_tree->reset();
 
   phase.restart();
-  res.mesh = assembler.finish(columns);
+  res.mesh = assembler.take_mesh();
   BLAYER_EXPENSIVE_ASSERT(every_cell_valid(res.mesh));
   res.envelope.points = columns.top;
   res.envelope.triangles = start.triangles;
@@ -228,6 +228,9 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
             std::max(rep.max_symmetry_distance, std::fabs(topo.plane->signed_distance(res.mesh.points[q])));
   }
   rep.t_report = phase.seconds();
+  phase.restart();
+  assembler.attach_arrays(columns, &res.mesh);  // after the summary: its tables are freed
+  rep.t_assembly += phase.seconds();
   rep.t_total = total.seconds();
   return res;
 }

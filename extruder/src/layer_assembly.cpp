@@ -78,8 +78,8 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
   }
 }
 
-VolumeMesh LayerAssembler::finish(const ColumnState& columns) {
-  const std::int64_t np = static_cast<std::int64_t>(mesh_.points.size());
+void LayerAssembler::attach_arrays(const ColumnState& columns, VolumeMesh* mesh) {
+  const std::int64_t np = static_cast<std::int64_t>(point_column_.size());
   DataArray normal{"normal", 3, false, std::vector<double>(3 * np)};
   DataArray height{"column_height", 1, false, std::vector<double>(np)};
   DataArray reason{"stop_reason", 1, true, std::vector<double>(np)};
@@ -97,10 +97,9 @@ VolumeMesh LayerAssembler::finish(const ColumnState& columns) {
   // Freed before the cell array is built. Assigning {} would keep their capacity, and a
   // brace list would copy every array: both held the peak memory of a run.
   std::vector<Vec3>().swap(point_normal_);
-  for (DataArray* a : {&normal, &height, &reason, &layers, &fan}) mesh_.point_data.push_back(std::move(*a));
-  mesh_.cell_data.push_back(DataArray{"layer", 1, true, std::vector<double>(cell_layer_.begin(), cell_layer_.end())});
+  for (DataArray* a : {&normal, &height, &reason, &layers, &fan}) mesh->point_data.push_back(std::move(*a));
+  mesh->cell_data.push_back(DataArray{"layer", 1, true, std::vector<double>(cell_layer_.begin(), cell_layer_.end())});
   std::vector<int>().swap(cell_layer_);
-  return std::move(mesh_);
 }
 
 }  // namespace blayer

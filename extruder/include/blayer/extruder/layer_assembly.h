@@ -47,7 +47,16 @@ class LayerAssembler {
   // Moves the mesh out with its arrays:
   //   point  normal (3), column_height, stop_reason, layers, fan_column   (extrude_layers.h)
   //   cell   layer
-  VolumeMesh finish(const ColumnState& columns);
+  VolumeMesh finish(const ColumnState& columns) {
+    VolumeMesh mesh = take_mesh();
+    attach_arrays(columns, &mesh);
+    return mesh;
+  }
+  // The same in two steps: the points and cells, then their arrays. A run summarises
+  // its cells in between, so that the summary's tables and the arrays never add up in
+  // its peak memory.
+  VolumeMesh take_mesh() { return std::move(mesh_); }
+  void attach_arrays(const ColumnState& columns, VolumeMesh* mesh);
 
  private:
   std::vector<LayerElement> elements_;
