@@ -1,7 +1,6 @@
 #include "vtu_writer.h"
 
 #include <tbb/parallel_for.h>
-#include <vtkBase64Utilities.h>
 #include <vtkDataCompressor.h>
 #include <vtkLZ4DataCompressor.h>
 #include <vtkSmartPointer.h>
@@ -16,6 +15,7 @@
 #include <locale>
 #include <vector>
 
+#include "base64.h"
 #include "blayer/core/errors.h"
 
 namespace blayer {
@@ -111,7 +111,7 @@ const char* compressor_name(VtkCompressor c) {
   return c == VtkCompressor::kLz4 ? "vtkLZ4DataCompressor" : "vtkZLibDataCompressor";
 }
 
-// Base64 of a byte stream written in pieces (VTK's encoder): whole groups of three
+// Base64 of a byte stream written in pieces (base64.h): whole groups of three
 // bytes as they come, the 0 to 2 left over carried to the next piece, '=' padding at
 // the end.
 class Base64Writer {
@@ -143,7 +143,7 @@ class Base64Writer {
     const std::size_t n_chunks = (n + kEncodeChunk - 1) / kEncodeChunk;
     tbb::parallel_for(std::size_t(0), n_chunks, [&](std::size_t c) {
       const std::size_t first = c * kEncodeChunk, length = std::min(kEncodeChunk, n - first);
-      vtkBase64Utilities::Encode(data + first, static_cast<unsigned long>(length), text_.data() + first / 3 * 4);
+      encode_base64(data + first, length, text_.data() + first / 3 * 4);
     });
     out_.write(reinterpret_cast<const char*>(text_.data()), static_cast<std::streamsize>(text_.size()));
   }
