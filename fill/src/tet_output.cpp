@@ -201,7 +201,7 @@ void add_quality_stats(FillResult* result) {
   st.max_radius_edge = 0.0;
   st.min_tet_volume = std::numeric_limits<double>::max();
   for (std::size_t t = 0; t < vm.n_cells(); ++t) {
-    const PointId* c = &vm.connectivity[4 * t];
+    const PointId* c = vm.cell_nodes(t);
     Vec3 p[4];
     for (int k = 0; k < 4; ++k) p[k] = vm.points[c[k]];
     double dihedral, radius_edge;

@@ -266,8 +266,7 @@ void write_vtu_blocks(const VolumeMesh& mesh, const std::string& path, const std
                          3 * mesh.points.size()),
               compressor);
   out << "      </Points>\n      <Cells>\n";
-  write_array(out, widened_ids("connectivity", mesh.connectivity),
-              compressor);
+  write_array(out, widened_ids("connectivity", mesh.connectivity), compressor);
   // VTK's offsets are the cells' ends: mesh.offsets without its leading 0.
   write_array(out, raw_source("offsets", "Int64", 1, mesh.offsets.data() + 1, n_cells), compressor);
   ArraySource types{"types", "UInt8", 1, 1, n_cells, [&mesh](std::size_t first, std::size_t n, unsigned char* o) {

@@ -405,7 +405,8 @@ TEST(LayerAssembly, CellTypesFollowHowManyColumnsGrow) {
   a.commit_layer(0, {1, 1, 0, 1}, next, d, &c);  // (0,1,3) wedge; (0,3,2) pyramid
   EXPECT_EQ(c.layers, (std::vector<int>{1, 1, 0, 1}));
   EXPECT_EQ(c.top_id[3], 6);
-  const VolumeMesh m = a.finish(c);
+  VolumeMesh m = a.take_mesh();
+  a.attach_arrays(c, &m);
   ASSERT_EQ(m.n_cells(), 2u);
   EXPECT_EQ(m.cell_types[0], CellType::kWedge);
   EXPECT_EQ(m.cell_types[1], CellType::kPyramid);

@@ -44,17 +44,12 @@ class LayerAssembler {
   // Mesh point p belongs to column point_column()[p].
   const std::vector<int>& point_column() const { return point_column_; }
 
-  // Moves the mesh out with its arrays:
+  // The mesh in two steps: take_mesh moves out its points and cells, attach_arrays then
+  // adds its arrays:
   //   point  normal (3), column_height, stop_reason, layers, fan_column   (extrude_layers.h)
   //   cell   layer
-  VolumeMesh finish(const ColumnState& columns) {
-    VolumeMesh mesh = take_mesh();
-    attach_arrays(columns, &mesh);
-    return mesh;
-  }
-  // The same in two steps: the points and cells, then their arrays. A run summarises
-  // its cells in between, so that the summary's tables and the arrays never add up in
-  // its peak memory.
+  // A run summarises its cells in between, so that the summary's tables and the arrays
+  // never add up in its peak memory.
   VolumeMesh take_mesh() { return std::move(mesh_); }
   void attach_arrays(const ColumnState& columns, VolumeMesh* mesh);
 
