@@ -4,6 +4,7 @@
 #endif
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -145,11 +146,19 @@ FilledRegion fill_beyond_layers(const ParamValues& params, Side side, const std:
   return f;
 }
 
+// Volumes of the layer cells (the first n_layer_cells) and of the fill.
+struct MeshVolumes {
+  double layers = 0.0, fill = 0.0;
+};
+
 // The one validity decision of a run: the quality module's exact check of the whole
 // assembled mesh (layers and fill). Nothing is written unless it passes; the check's
-// per-cell arrays are added to the mesh.
-MeshCheckReport decide_validity(VolumeMesh& mesh) {
+// per-cell arrays are added to the mesh. *volumes: summed from the check's per-cell
+// volumes in double precision, before they are stored as the Float32 array.
+MeshCheckReport decide_validity(VolumeMesh& mesh, std::size_t n_layer_cells, MeshVolumes* volumes) {
   MeshCheckReport check = check_volume_mesh(mesh);
+  const std::vector<double>& volume = check.metrics[kVolumeMetric];
+  for (std::size_t c = 0; c < volume.size(); ++c) (c < n_layer_cells ? volumes->layers : volumes->fill) += volume[c];
   move_quality_arrays(mesh, &check);
   if (!check.ok())
     throw std::runtime_error("the assembled mesh failed the independent check (" +
@@ -160,22 +169,10 @@ MeshCheckReport decide_validity(VolumeMesh& mesh) {
   return check;
 }
 
-// The check's per-cell volumes, from the mesh's quality arrays (move_quality_arrays).
-const std::vector<double>& cell_volumes(const VolumeMesh& mesh) {
-  const DataArray* volume = mesh.find_cell_array("volume");
-  if (!volume) throw std::logic_error("the checked mesh has no volume array");
-  return volume->values;
-}
-
 nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, const MeshCheckReport& check,
-                           const VolumeMesh& mesh, std::size_t n_layer_cells, const FillStats* fill,
-                           double seconds) {
+                           const MeshVolumes& volumes, const FillStats* fill, double seconds) {
   nlohmann::json j;
-  // Volumes of the layer cells and of the fill, from the check's per-cell volumes.
-  const std::vector<double>& volume = cell_volumes(mesh);
-  double layers_volume = 0.0, fill_volume = 0.0;
-  for (std::size_t c = 0; c < volume.size(); ++c) (c < n_layer_cells ? layers_volume : fill_volume) += volume[c];
-  j["volume"] = {{"layers", layers_volume}, {"fill", fill_volume}};
+  j["volume"] = {{"layers", volumes.layers}, {"fill", volumes.fill}};
   j["config"] = params.effective();
   const nlohmann::json extrusion = extrusion_report_to_json(r);
   for (auto it = extrusion.begin(); it != extrusion.end(); ++it) j[it.key()] = it.value();
@@ -192,15 +189,15 @@ nlohmann::json report_json(const ParamValues& params, const ExtrusionReport& r, 
 }
 
 void write_envelope(const ExtrusionResult& result, const std::string& path, const VtkWriteOptions& vtk) {
-  DataArray layers{"layers", 1, true, {}};
+  DataArray layers{"layers", 1, ArrayValues(ValueType::kInt32)};
   for (int l : result.column_layers) layers.values.push_back(l);
-  DataArray reason{"stop_reason", 1, true, {}};
+  DataArray reason{"stop_reason", 1, ArrayValues(ValueType::kInt32)};
   for (StopReason s : result.stop_reason) reason.values.push_back(static_cast<int>(s));
   write_vtp(result.envelope, {layers, reason}, {}, path, vtk);
 }
 
 void write_boundary(const MarkedBoundary& b, const std::string& path, const VtkWriteOptions& vtk) {
-  DataArray marker{"marker", 1, true, std::vector<double>(b.marker.begin(), b.marker.end())};
+  DataArray marker{"marker", 1, ArrayValues(std::vector<std::int32_t>(b.marker.begin(), b.marker.end()))};
   write_vtp(b.surface, {}, {marker}, path, vtk);
 }
 
@@ -254,7 +251,9 @@ int run_extrude_command(const ParamValues& params) {
   if (params.get_bool("fill")) filled = fill_beyond_layers(params, surface_opt.side, prepared.symmetry, result);
 
   const Stopwatch check_time;
-  const MeshCheckReport check = decide_validity(result.mesh);
+  MeshVolumes volumes;
+  const MeshCheckReport check = decide_validity(result.mesh, n_layer_cells, &volumes);
+  release_free_heap();  // the check's double metrics, now stored as Float32
   const double check_seconds = check_time.seconds();
 
   std::optional<MarkedBoundary> boundary;
@@ -268,7 +267,7 @@ int run_extrude_command(const ParamValues& params) {
   if (!out.boundary.empty()) write_boundary(*boundary, out.boundary_tmp, out.vtk);
   if (!out.report.empty())
     write_text_file(out.report_tmp,
-                    report_json(params, result.report, check, result.mesh, n_layer_cells,
+                    report_json(params, result.report, check, volumes,
                                 filled ? &filled->fill.stats : nullptr, total.seconds())
                             .dump(2) +
                         "\n",

@@ -41,8 +41,8 @@ int run_normals_command(const ParamValues& params) {
   const double solve_seconds = solve.seconds();
 
   const std::size_t nv = s.points.size();
-  DataArray normal{"normal", 3, false, {}}, vis{"visibility", 1, false, {}}, nd{"normality_deg", 1, false, {}},
-      st{"normal_status", 1, true, {}};
+  DataArray normal{"normal", 3, {}}, vis{"visibility", 1, {}}, nd{"normality_deg", 1, {}},
+      st{"normal_status", 1, ArrayValues(ValueType::kInt32)};
   normal.values.reserve(3 * nv);
   for (std::size_t i = 0; i < nv; ++i) {
     for (int k = 0; k < 3; ++k) normal.values.push_back(pn.normal[i][k]);
@@ -61,7 +61,7 @@ int run_normals_command(const ParamValues& params) {
     std::printf("  status %-24s %d\n", normal_status_name(static_cast<NormalStatus>(code)), count);
   std::printf("  min visibility (min n.f)  %.6f  (max face-normal angle %.3f deg)\n", min_v,
               std::acos(std::clamp(min_v, -1.0, 1.0)) * kRadToDeg);
-  const std::vector<double> nd_pct = percentiles(nd.values, {0.0, 0.01, 0.5});
+  const std::vector<double> nd_pct = percentiles(nd.values.as<double>(), {0.0, 0.01, 0.5});
   std::printf("  normality D [deg]         min %.4f  p1 %.4f  p50 %.4f\n", nd_pct[0], nd_pct[1], nd_pct[2]);
   std::printf("  time                      %.3f s normals (%.0f vertices/s), %.3f s in all\n", solve_seconds,
               solve_seconds > 0 ? static_cast<double>(nv) / solve_seconds : 0.0, total.seconds());

@@ -34,7 +34,7 @@ inline void add_stacked_wedges(VolumeMesh& m, int n, int layers) {
   const int np = n + 1;
   m.cell_types.reserve(static_cast<std::size_t>(2) * n * n * layers);
   m.connectivity.reserve(static_cast<std::size_t>(12) * n * n * layers);
-  DataArray layer{"layer", 1, true, {}};
+  DataArray layer{"layer", 1, ArrayValues(ValueType::kInt32)};
   auto id = [&](int k, int i, int j) {
     return static_cast<std::int64_t>(k) * np * np + static_cast<std::int64_t>(j) * np + i;
   };

@@ -43,16 +43,16 @@ namespace {
 
 blayer::VolumeMesh make_prism_mesh(int n, int layers) {
   blayer::VolumeMesh m;
-  blayer::DataArray normal{"normal", 3, false, {}};
-  blayer::DataArray height{"column_height", 1, false, {}};
-  blayer::DataArray reason{"stop_reason", 1, true, {}};
-  blayer::DataArray n_layers{"layers", 1, true, {}};
+  blayer::DataArray normal{"normal", 3, std::vector<double>{}};
+  blayer::DataArray height{"column_height", 1, std::vector<double>{}};
+  blayer::DataArray reason{"stop_reason", 1, blayer::ArrayValues(blayer::ValueType::kInt32)};
+  blayer::DataArray n_layers{"layers", 1, blayer::ArrayValues(blayer::ValueType::kInt32)};
   const double total = 1e-3 * (std::pow(1.2, layers) - 1.0) / 0.2;
   blayer::bench::add_stacked_points(m, n, layers, [&](double x, double y, double) {
     // The wall normal of the wavy surface, so the array is as varied as a real one.
     const double gx = -0.3 * std::cos(6.0 * x) * std::cos(4.0 * y), gy = 0.2 * std::sin(6.0 * x) * std::sin(4.0 * y);
     const double len = std::sqrt(gx * gx + gy * gy + 1.0);
-    normal.values.insert(normal.values.end(), {gx / len, gy / len, 1.0 / len});
+    for (double x : {gx / len, gy / len, 1.0 / len}) normal.values.push_back(x);
     height.values.push_back(total);
     reason.values.push_back(0);
     n_layers.values.push_back(layers);

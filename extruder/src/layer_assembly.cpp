@@ -80,26 +80,32 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
 
 void LayerAssembler::attach_arrays(const ColumnState& columns, VolumeMesh* mesh) {
   const std::int64_t np = static_cast<std::int64_t>(point_column_.size());
-  DataArray normal{"normal", 3, false, std::vector<double>(3 * np)};
-  DataArray height{"column_height", 1, false, std::vector<double>(np)};
-  DataArray reason{"stop_reason", 1, true, std::vector<double>(np)};
-  DataArray layers{"layers", 1, true, std::vector<double>(np)};
-  DataArray fan{"fan_column", 1, true, std::vector<double>(np)};
+  const auto n = static_cast<std::size_t>(np);
+  DataArray normal{"normal", 3, ArrayValues(ValueType::kFloat64, 3 * n)};
+  DataArray height{"column_height", 1, ArrayValues(ValueType::kFloat64, n)};
+  DataArray reason{"stop_reason", 1, ArrayValues(ValueType::kInt32, n)};
+  DataArray layers{"layers", 1, ArrayValues(ValueType::kInt32, n)};
+  DataArray fan{"fan_column", 1, ArrayValues(ValueType::kInt32, n)};
+  double* normal_out = normal.values.as<double>().data();
+  double* height_out = height.values.as<double>().data();
+  std::int32_t* reason_out = reason.values.as<std::int32_t>().data();
+  std::int32_t* layers_out = layers.values.as<std::int32_t>().data();
+  std::int32_t* fan_out = fan.values.as<std::int32_t>().data();
   for (std::int64_t p = 0; p < np; ++p) {
     const int v = point_column_[p];
-    for (int i = 0; i < 3; ++i) normal.values[3 * p + i] = point_normal_[p][i];
+    for (int i = 0; i < 3; ++i) normal_out[3 * p + i] = point_normal_[p][i];
     if (v < 0) continue;  // a wall point no triangle uses
-    height.values[p] = columns.path[v];
-    reason.values[p] = static_cast<int>(columns.reason[v]);
-    layers.values[p] = columns.layers[v];
-    fan.values[p] = in_fan_[v];
+    height_out[p] = columns.path[v];
+    reason_out[p] = static_cast<std::int32_t>(columns.reason[v]);
+    layers_out[p] = columns.layers[v];
+    fan_out[p] = in_fan_[v];
   }
   // Freed before the cell array is built. Assigning {} would keep their capacity, and a
   // brace list would copy every array: both held the peak memory of a run.
   std::vector<Vec3>().swap(point_normal_);
   for (DataArray* a : {&normal, &height, &reason, &layers, &fan}) mesh->point_data.push_back(std::move(*a));
-  mesh->cell_data.push_back(DataArray{"layer", 1, true, std::vector<double>(cell_layer_.begin(), cell_layer_.end())});
-  std::vector<int>().swap(cell_layer_);
+  mesh->cell_data.push_back(DataArray{"layer", 1, ArrayValues(std::move(cell_layer_))});
+  cell_layer_ = {};
 }
 
 }  // namespace blayer

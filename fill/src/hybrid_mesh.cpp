@@ -39,10 +39,10 @@ std::vector<std::int64_t> append_fill(const FillResult& fill, const std::vector<
   // Layer cells are region 0; the tets and the pyramids capping the quad tops of fan
   // strips (fill_envelope.h: "layer" -1) belong to the fill.
   const DataArray* layer = mesh->find_cell_array("layer");
-  std::vector<double> region(mesh->n_cells());
+  std::vector<std::int32_t> region(mesh->n_cells());
   for (std::size_t c = 0; c < region.size(); ++c)
-    region[c] = c >= n_layer_cells || (layer && layer->values[c] < 0.0) ? 1.0 : 0.0;
-  mesh->cell_data.push_back({"region", 1, true, std::move(region)});
+    region[c] = c >= n_layer_cells || (layer && layer->values[c] < 0.0) ? 1 : 0;
+  mesh->cell_data.push_back({"region", 1, ArrayValues(std::move(region))});
   return to_mesh;
 }
 

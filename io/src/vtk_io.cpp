@@ -17,7 +17,9 @@
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 
 #include "blayer/core/errors.h"
 #include "blayer/io/atomic_file.h"
@@ -27,28 +29,33 @@ namespace blayer {
 
 namespace {
 
-// Double arrays are handed to VTK without a copy (the writer only reads them), which
+// Arrays are handed to VTK without a copy (the writer only reads them), which
 // keeps the peak memory of writing a large mesh close to the mesh itself.
 vtkSmartPointer<vtkDataArray> to_vtk(const DataArray& a) {
   const vtkIdType n = static_cast<vtkIdType>(a.values.size());
   vtkSmartPointer<vtkDataArray> arr;
-  if (a.integer) {
-    auto ia = vtkSmartPointer<vtkIntArray>::New();
-    ia->SetNumberOfComponents(a.n_components);
-    ia->SetNumberOfValues(n);
-    for (vtkIdType i = 0; i < n; ++i) ia->SetValue(i, static_cast<int>(a.values[i]));
-    arr = ia;
-  } else if (a.single_precision) {
-    auto fa = vtkSmartPointer<vtkFloatArray>::New();
-    fa->SetNumberOfComponents(a.n_components);
-    fa->SetNumberOfValues(n);
-    for (vtkIdType i = 0; i < n; ++i) fa->SetValue(i, static_cast<float>(a.values[i]));
-    arr = fa;
-  } else {
-    auto da = vtkSmartPointer<vtkDoubleArray>::New();
-    da->SetNumberOfComponents(a.n_components);
-    da->SetArray(const_cast<double*>(a.values.data()), n, /*save=*/1);
-    arr = da;
+  switch (a.type()) {
+    case ValueType::kInt32: {
+      auto ia = vtkSmartPointer<vtkIntArray>::New();
+      ia->SetNumberOfComponents(a.n_components);
+      ia->SetArray(const_cast<std::int32_t*>(a.values.as<std::int32_t>().data()), n, /*save=*/1);
+      arr = ia;
+      break;
+    }
+    case ValueType::kFloat32: {
+      auto fa = vtkSmartPointer<vtkFloatArray>::New();
+      fa->SetNumberOfComponents(a.n_components);
+      fa->SetArray(const_cast<float*>(a.values.as<float>().data()), n, /*save=*/1);
+      arr = fa;
+      break;
+    }
+    case ValueType::kFloat64: {
+      auto da = vtkSmartPointer<vtkDoubleArray>::New();
+      da->SetNumberOfComponents(a.n_components);
+      da->SetArray(const_cast<double*>(a.values.as<double>().data()), n, /*save=*/1);
+      arr = da;
+      break;
+    }
   }
   arr->SetName(a.name.c_str());
   return arr;
@@ -102,20 +109,30 @@ void write_atomically(Writer* w, vtkDataObject* data, const std::string& path, c
   file.commit();
 }
 
+// How a read array is kept: float and double as they are; integers as Int32 when every
+// value fits (all of blayer's own), otherwise as doubles, which hold any integer up to
+// 2^53 exactly (written back as Float64).
+ValueType stored_type(int vtk_type, const std::vector<double>& values) {
+  if (vtk_type == VTK_FLOAT) return ValueType::kFloat32;
+  if (vtk_type == VTK_DOUBLE) return ValueType::kFloat64;
+  for (double x : values)
+    if (!(x >= std::numeric_limits<std::int32_t>::min() && x <= std::numeric_limits<std::int32_t>::max()))
+      return ValueType::kFloat64;
+  return ValueType::kInt32;
+}
+
 void copy_arrays(vtkFieldData* from, std::vector<DataArray>* to, const std::vector<char>* keep) {
   for (int i = 0; i < from->GetNumberOfArrays(); ++i) {
     vtkDataArray* arr = vtkDataArray::SafeDownCast(from->GetAbstractArray(i));
     if (!arr || !arr->GetName()) continue;
-    DataArray a;
-    a.name = arr->GetName();
-    a.n_components = arr->GetNumberOfComponents();
-    a.integer = arr->GetDataType() != VTK_FLOAT && arr->GetDataType() != VTK_DOUBLE;
+    std::vector<double> values;
+    const int n_components = arr->GetNumberOfComponents();
     const vtkIdType n = arr->GetNumberOfTuples();
     for (vtkIdType t = 0; t < n; ++t) {
       if (keep && !(*keep)[t]) continue;
-      for (int c = 0; c < a.n_components; ++c) a.values.push_back(arr->GetComponent(t, c));
+      for (int c = 0; c < n_components; ++c) values.push_back(arr->GetComponent(t, c));
     }
-    to->push_back(std::move(a));
+    to->push_back(DataArray{arr->GetName(), n_components, ArrayValues(stored_type(arr->GetDataType(), values), values)});
   }
 }
 

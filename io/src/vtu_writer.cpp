@@ -48,29 +48,23 @@ void convert(const Source* from, std::size_t n, unsigned char* out) {
   }
 }
 
-ArraySource source_of(const DataArray& a) {
-  ArraySource s{a.name, "Float64", a.n_components, 8, a.values.size(), nullptr};
-  const double* v = a.values.data();
-  if (a.integer) {
-    s.type = "Int32";
-    s.value_bytes = 4;
-    s.fill = [v](std::size_t first, std::size_t n, unsigned char* out) { convert<std::int32_t>(v + first, n, out); };
-  } else if (a.single_precision) {
-    s.type = "Float32";
-    s.value_bytes = 4;
-    s.fill = [v](std::size_t first, std::size_t n, unsigned char* out) { convert<float>(v + first, n, out); };
-  } else {
-    s.fill = [v](std::size_t first, std::size_t n, unsigned char* out) { std::memcpy(out, v + first, 8 * n); };
-  }
-  return s;
-}
-
 template <class T>
 ArraySource raw_source(const std::string& name, const char* type, int n_components, const T* data, std::size_t n) {
   return {name, type, n_components, static_cast<int>(sizeof(T)), n,
           [data](std::size_t first, std::size_t count, unsigned char* out) {
             std::memcpy(out, data + first, sizeof(T) * count);
           }};
+}
+
+ArraySource source_of(const DataArray& a) {
+  const std::size_t n = a.values.size();
+  switch (a.type()) {
+    case ValueType::kInt32:
+      return raw_source(a.name, "Int32", a.n_components, a.values.as<std::int32_t>().data(), n);
+    case ValueType::kFloat32: return raw_source(a.name, "Float32", a.n_components, a.values.as<float>().data(), n);
+    case ValueType::kFloat64: break;
+  }
+  return raw_source(a.name, "Float64", a.n_components, a.values.as<double>().data(), n);
 }
 
 // The connectivity's 32-bit ids as Int64, VTK's own id type, which every reader takes.

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -28,12 +29,14 @@ void set_array(std::vector<DataArray>& arrays, DataArray a) {
 void append_validity_and_flags(const MeshCheckReport& r, const std::vector<std::size_t>* ids,
                                std::vector<DataArray>* out) {
   const std::size_t n = ids ? ids->size() : r.validity.size();
-  DataArray validity{"validity", 1, true, std::vector<double>(n)};
-  DataArray flags{"check_flags", 1, true, std::vector<double>(n)};
+  DataArray validity{"validity", 1, ArrayValues(ValueType::kInt32, n)};
+  DataArray flags{"check_flags", 1, ArrayValues(ValueType::kInt32, n)};
+  std::int32_t* validity_out = validity.values.as<std::int32_t>().data();
+  std::int32_t* flags_out = flags.values.as<std::int32_t>().data();
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t c = ids ? (*ids)[i] : i;
-    validity.values[i] = static_cast<double>(r.validity[c]);
-    flags.values[i] = r.flags[c];
+    validity_out[i] = static_cast<std::int32_t>(r.validity[c]);
+    flags_out[i] = static_cast<std::int32_t>(r.flags[c]);
   }
   out->push_back(std::move(validity));
   out->push_back(std::move(flags));
@@ -45,8 +48,9 @@ std::vector<DataArray> quality_arrays(const MeshCheckReport& r, const std::vecto
   auto id = [&](std::size_t i) { return ids ? (*ids)[i] : i; };
   std::vector<DataArray> out;
   for (std::size_t k = 0; k < kCheckMetricNames.size(); ++k) {
-    DataArray a{kCheckMetricNames[k], 1, false, std::vector<double>(n), true};
-    for (std::size_t i = 0; i < n; ++i) a.values[i] = r.metrics[k][id(i)];
+    DataArray a{kCheckMetricNames[k], 1, ArrayValues(ValueType::kFloat32, n)};
+    float* values = a.values.as<float>().data();
+    for (std::size_t i = 0; i < n; ++i) values[i] = static_cast<float>(r.metrics[k][id(i)]);
     out.push_back(std::move(a));
   }
   append_validity_and_flags(r, ids, &out);
@@ -64,8 +68,9 @@ void move_quality_arrays(VolumeMesh& mesh, MeshCheckReport* report) {
   require_matching(mesh, *report, "move_quality_arrays");
   std::vector<DataArray> arrays;
   for (std::size_t k = 0; k < kCheckMetricNames.size(); ++k) {
-    arrays.push_back(DataArray{kCheckMetricNames[k], 1, false, std::move(report->metrics[k]), true});
-    report->metrics[k] = {};
+    // One metric at a time, its doubles freed as soon as they are copied.
+    arrays.push_back(DataArray{kCheckMetricNames[k], 1, ArrayValues(ValueType::kFloat32, report->metrics[k])});
+    std::vector<double>().swap(report->metrics[k]);
   }
   append_validity_and_flags(*report, nullptr, &arrays);
   for (DataArray& a : arrays) set_array(mesh.cell_data, std::move(a));
@@ -101,7 +106,7 @@ VolumeMesh extract_bad_cells(const VolumeMesh& mesh, const MeshCheckReport& repo
   }
 
   auto subset = [](const DataArray& a, const std::vector<std::size_t>& ids) {
-    DataArray s{a.name, a.n_components, a.integer, {}, a.single_precision};
+    DataArray s{a.name, a.n_components, ArrayValues(a.type())};
     s.values.reserve(ids.size() * a.n_components);
     for (std::size_t i : ids)
       for (int k = 0; k < a.n_components; ++k) s.values.push_back(a.values[i * a.n_components + k]);
@@ -112,7 +117,7 @@ VolumeMesh extract_bad_cells(const VolumeMesh& mesh, const MeshCheckReport& repo
   for (const DataArray& a : mesh.cell_data)
     if (a.values.size() == mesh.n_cells() * a.n_components) out.cell_data.push_back(subset(a, bad));
   for (DataArray& a : quality_arrays(report, &bad)) set_array(out.cell_data, std::move(a));
-  DataArray original{"original_cell_id", 1, true, std::vector<double>(bad.begin(), bad.end())};
+  DataArray original{"original_cell_id", 1, ArrayValues(ValueType::kInt32, std::vector<double>(bad.begin(), bad.end()))};
   set_array(out.cell_data, std::move(original));
   return out;
 }

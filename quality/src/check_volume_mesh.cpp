@@ -313,6 +313,7 @@ MeshCheckReport check_volume_mesh(const VolumeMesh& mesh) {
   r.flags.assign(n, 0);
   for (std::vector<double>& m : r.metrics) m.assign(n, kNaN);
   enum { kJac, kSkew, kAspect, kOrtho, kTwist, kGrowth, kVolume };
+  static_assert(kVolume == kVolumeMetric);
 
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& range) {
     Vec3 p[8];

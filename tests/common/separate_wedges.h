@@ -11,7 +11,7 @@ namespace blayer::test {
 
 inline VolumeMesh separate_wedges(const std::vector<std::vector<Vec3>>& cells) {
   VolumeMesh m;
-  DataArray layer{"layer", 1, true, {}};
+  DataArray layer{"layer", 1, ArrayValues(ValueType::kInt32)};
   for (const auto& cell : cells) {
     const auto base = static_cast<std::int64_t>(m.points.size());
     std::int64_t nodes[6];

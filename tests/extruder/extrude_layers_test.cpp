@@ -106,7 +106,8 @@ TEST(ExtrudeLayers, SphereGetsAllLayersWithTheGrowthLawThickness) {
   const double exact = 4.0 / 3.0 * M_PI * (std::pow(radius + total, 3) - std::pow(radius, 3));
   EXPECT_NEAR(vol, exact, (e / radius) * (e / radius) * exact);
   const DataArray* layer = r.mesh.find_cell_array("layer");
-  EXPECT_EQ(*std::max_element(layer->values.begin(), layer->values.end()), 4.0);
+  const std::vector<std::int32_t>& layers = layer->values.as<std::int32_t>();
+  EXPECT_EQ(*std::max_element(layers.begin(), layers.end()), 4);
 }
 
 TEST(ExtrudeLayers, CubeConvexEdgesAndCornersAreCovered) {

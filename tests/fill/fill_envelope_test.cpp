@@ -22,8 +22,8 @@ HexTop hex_top() {
   h.mesh.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   const std::int64_t hex[8] = {0, 1, 2, 3, 4, 5, 6, 7};
   h.mesh.add_cell(CellType::kHex, hex);
-  h.mesh.cell_data.push_back({"layer", 1, true, {3.0}});
-  h.mesh.point_data.push_back({"fan_column", 1, true, std::vector<double>(8, 1.0)});
+  h.mesh.cell_data.push_back({"layer", 1, ArrayValues(ValueType::kInt32, std::vector<double>{3.0})});
+  h.mesh.point_data.push_back({"fan_column", 1, ArrayValues(ValueType::kInt32, std::vector<double>(8, 1.0))});
   h.envelope.points.assign(h.mesh.points.begin() + 4, h.mesh.points.end());
   h.envelope.triangles = {{0, 1, 2}, {0, 2, 3}};
   return h;

@@ -38,8 +38,8 @@ OneLayer one_layer(const TriSurface& wall, Top top) {
     const std::int64_t nodes[6] = {t[0], t[2], t[1], t[0] + nv, t[2] + nv, t[1] + nv};
     l.mesh.add_cell(CellType::kWedge, nodes);
   }
-  l.mesh.point_data.push_back({"column_height", 1, false, std::vector<double>(2 * nv, 0.5)});
-  l.mesh.cell_data.push_back({"layer", 1, true, std::vector<double>(wall.triangles.size(), 0.0)});
+  l.mesh.point_data.push_back({"column_height", 1, std::vector<double>(2 * nv, 0.5)});
+  l.mesh.cell_data.push_back({"layer", 1, ArrayValues(ValueType::kInt32, wall.triangles.size())});
   l.envelope.points.assign(l.mesh.points.begin() + nv, l.mesh.points.end());
   l.envelope.triangles = wall.triangles;
   for (std::int64_t i = 0; i < nv; ++i) l.envelope_ids.push_back(nv + i);
@@ -123,8 +123,8 @@ TEST(HybridMesh, AppendedFillKeepsTheLayerPointsAndAddsTheRest) {
   }
   const DataArray* height = l.mesh.find_point_array("column_height");
   ASSERT_EQ(height->values.size(), l.mesh.points.size());
-  EXPECT_EQ(height->values.back(), 0.0);
-  EXPECT_EQ(height->values.front(), 0.5);
+  EXPECT_EQ(height->values[height->values.size() - 1], 0.0);
+  EXPECT_EQ(height->values[0], 0.5);
 
   const MeshCheckReport check = check_volume_mesh(l.mesh);
   EXPECT_TRUE(check.ok()) << format_check_report(check);

@@ -25,17 +25,17 @@ inline VolumeMesh mixed_mesh() {
   m.add_cell(CellType::kWedge, wedge);  // a second wedge, so counts by type differ
 
   const std::size_t np = m.points.size();
-  DataArray normal{"normal", 3, false, {}};
-  DataArray height{"column_height", 1, false, {}};
-  DataArray layers{"layers", 1, true, {}};
+  DataArray normal{"normal", 3, std::vector<double>{}};
+  DataArray height{"column_height", 1, std::vector<double>{}};
+  DataArray layers{"layers", 1, ArrayValues(ValueType::kInt32)};
   for (std::size_t i = 0; i < np; ++i) {
-    normal.values.insert(normal.values.end(), {0.0, 0.6, 0.8});
+    for (double x : {0.0, 0.6, 0.8}) normal.values.push_back(x);
     height.values.push_back(0.1 * static_cast<double>(i) + 1.0 / 3.0);
     layers.values.push_back(static_cast<double>(i % 4));
   }
   m.point_data = {normal, height, layers};
-  DataArray volume{"volume", 1, false, {1.0, 1.0 / 3.0, 0.25, 1.0 / 6.0, 0.25}, /*single_precision=*/true};
-  m.cell_data = {{"layer", 1, true, {0, 1, 0, -1, 0}}, volume};
+  DataArray volume{"volume", 1, ArrayValues(ValueType::kFloat32, std::vector<double>{1.0, 1.0 / 3.0, 0.25, 1.0 / 6.0, 0.25})};
+  m.cell_data = {{"layer", 1, ArrayValues(ValueType::kInt32, {0, 1, 0, -1, 0})}, volume};
   return m;
 }
 

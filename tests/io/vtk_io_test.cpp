@@ -30,8 +30,8 @@ VolumeMesh one_prism() {
   m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0.5}, {1, 0, 0.5}, {0, 1, 0.5}};
   const std::int64_t wedge[6] = {0, 2, 1, 3, 5, 4};
   m.add_cell(CellType::kWedge, wedge);
-  m.cell_data.push_back({"layer", 1, true, {0}});
-  m.point_data.push_back({"normal", 3, false, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}});
+  m.cell_data.push_back({"layer", 1, ArrayValues(ValueType::kInt32, std::vector<double>{0})});
+  m.point_data.push_back({"normal", 3, std::vector<double>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}});
   return m;
 }
 
@@ -74,7 +74,7 @@ TEST(VtkIo, VtuRoundTripKeepsPointsCellsAndArrays) {
   EXPECT_EQ(back.mesh.cell_types, m.cell_types);
   const DataArray* layer = back.mesh.find_cell_array("layer");
   ASSERT_NE(layer, nullptr);
-  EXPECT_TRUE(layer->integer);
+  EXPECT_TRUE(layer->integer());
   EXPECT_EQ(layer->values, m.cell_data[0].values);
   const DataArray* normal = back.mesh.find_point_array("normal");
   ASSERT_NE(normal, nullptr);
@@ -99,17 +99,17 @@ void expect_round_trip_keeps_every_cell_type_and_array_kind(const VtkWriteOption
     const DataArray* b = back.mesh.find_point_array(a.name);
     ASSERT_NE(b, nullptr) << a.name;
     EXPECT_EQ(b->n_components, a.n_components) << a.name;
-    EXPECT_EQ(b->integer, a.integer) << a.name;
+    EXPECT_EQ(b->integer(), a.integer()) << a.name;
     EXPECT_EQ(b->values, a.values) << a.name;
   }
   for (const DataArray& a : m.cell_data) {
     const DataArray* b = back.mesh.find_cell_array(a.name);
     ASSERT_NE(b, nullptr) << a.name;
-    EXPECT_EQ(b->integer, a.integer) << a.name;
+    EXPECT_EQ(b->integer(), a.integer()) << a.name;
     ASSERT_EQ(b->values.size(), a.values.size()) << a.name;
     // Float32 arrays come back rounded to float, integer and Float64 arrays exactly.
     for (std::size_t i = 0; i < a.values.size(); ++i)
-      EXPECT_EQ(b->values[i], a.single_precision ? static_cast<double>(static_cast<float>(a.values[i])) : a.values[i])
+      EXPECT_EQ(b->values[i], a.single_precision() ? static_cast<double>(static_cast<float>(a.values[i])) : a.values[i])
           << a.name << "[" << i << "]";
   }
 }
@@ -143,7 +143,7 @@ void write_appended_raw_lz4(const VolumeMesh& m, const std::string& path) {
   vtkNew<vtkDoubleArray> normal;
   normal->SetName("normal");
   normal->SetNumberOfComponents(3);
-  for (double v : m.find_point_array("normal")->values) normal->InsertNextValue(v);
+  for (double v : m.find_point_array("normal")->values.as<double>()) normal->InsertNextValue(v);
   grid->GetPointData()->AddArray(normal);
   vtkNew<vtkXMLUnstructuredGridWriter> w;
   w->SetInputData(grid);
@@ -167,6 +167,23 @@ TEST(VtkIo, ReadsOlderVtuWithAppendedRawLz4Data) {
   const DataArray* normal = back.mesh.find_point_array("normal");
   ASSERT_NE(normal, nullptr);
   EXPECT_EQ(normal->values, m.find_point_array("normal")->values);
+}
+
+TEST(VtkIo, ReadArraysKeepTheirPrecisionAndIntegersPastInt32StayExact) {
+  TempDir dir;
+  const std::string f = dir.write("a.vtk",
+                                  "# vtk DataFile Version 3.0\nm\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
+                                  "0 0 0\n1 0 0\n0 1 0\n0 0 1\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n10\n"
+                                  "CELL_DATA 1\nFIELD FieldData 3\nsmall 1 1 long\n7\nbig 1 1 long\n3000000000\n"
+                                  "third 1 1 float\n0.333333343\n");
+  const VolumeMeshFile m = read_volume_mesh(f);
+  const DataArray* small = m.mesh.find_cell_array("small");
+  const DataArray* big = m.mesh.find_cell_array("big");
+  const DataArray* third = m.mesh.find_cell_array("third");
+  ASSERT_TRUE(small && big && third);
+  EXPECT_EQ(small->values, ArrayValues(std::vector<std::int32_t>{7}));
+  EXPECT_EQ(big->values, ArrayValues(std::vector<double>{3e9}));
+  EXPECT_EQ(third->values, ArrayValues(std::vector<float>{1.0f / 3.0f}));
 }
 
 TEST(VtkIo, WritingIntoAMissingDirectoryFailsAndLeavesNothing) {

@@ -59,10 +59,10 @@ TEST(VtkXmlOutput, VtpWithPointAndCellArraysIsWellFormedXml) {
   TriSurface s;
   s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   s.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-  const DataArray normal{"normal", 3, false, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0.6, 0, 0.8}};
-  const DataArray reason{"stop_reason", 1, true, {0, 1, 2, 3}};
-  const DataArray visibility{"visibility", 1, false, {0.5, 0.25, 1, 1.0 / 3.0}, /*single_precision=*/true};
-  const DataArray marker{"marker", 1, true, {1, 1, 2, 2}};
+  const DataArray normal{"normal", 3, std::vector<double>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0.6, 0, 0.8}};
+  const DataArray reason{"stop_reason", 1, ArrayValues(ValueType::kInt32, std::vector<double>{0, 1, 2, 3})};
+  const DataArray visibility{"visibility", 1, ArrayValues(ValueType::kFloat32, std::vector<double>{0.5, 0.25, 1, 1.0 / 3.0})};
+  const DataArray marker{"marker", 1, ArrayValues(ValueType::kInt32, std::vector<double>{1, 1, 2, 2})};
   write_vtp(s, {normal, reason, visibility}, {marker}, dir.file("s.vtp"));
   expect_well_formed_xml(dir.file("s.vtp"));
 }
@@ -82,7 +82,8 @@ TEST(VtkXmlOutput, Lz4VtuAndVtpAreWellFormedXml) {
   TriSurface s;
   s.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   s.triangles = {{0, 1, 2}};
-  write_vtp(s, {{"layers", 1, true, {1, 2, 3}}}, {{"marker", 1, true, {1}}}, dir.file("s.vtp"), lz4);
+  write_vtp(s, {{"layers", 1, ArrayValues(ValueType::kInt32, {1, 2, 3})}}, {{"marker", 1, ArrayValues(ValueType::kInt32, std::vector<double>{1})}},
+            dir.file("s.vtp"), lz4);
   EXPECT_EQ(compressor_of(dir.file("m.vtu")), "vtkLZ4DataCompressor");
   EXPECT_EQ(compressor_of(dir.file("s.vtp")), "vtkLZ4DataCompressor");
   expect_well_formed_xml(dir.file("m.vtu"));
@@ -119,6 +120,12 @@ std::string numbers(const std::vector<double>& values) {
     s += (s.empty() ? "" : " ") + std::string(buf);
   }
   return s;
+}
+
+std::string numbers(const ArrayValues& values) {
+  std::vector<double> v(values.size());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = values[i];
+  return numbers(v);
 }
 
 // The summary kMeshioSummary should print for m.
@@ -172,7 +179,7 @@ TEST(VtkXmlOutput, MeshioReadsDefaultVtuWithCellCountsByTypeAndPointArrays) {
 // n x n wall quads, two triangles each, extruded by `layers` unit-spaced prisms.
 VolumeMesh prism_grid(int n, int layers) {
   VolumeMesh m;
-  DataArray height{"column_height", 1, false, {}};
+  DataArray height{"column_height", 1, std::vector<double>{}};
   for (int k = 0; k <= layers; ++k)
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
@@ -180,7 +187,7 @@ VolumeMesh prism_grid(int n, int layers) {
         height.values.push_back(0.1 * layers + 0.001 * j);
       }
   auto id = [&](int k, int i, int j) { return (static_cast<std::int64_t>(k) * (n + 1) + j) * (n + 1) + i; };
-  DataArray layer{"layer", 1, true, {}};
+  DataArray layer{"layer", 1, ArrayValues(ValueType::kInt32)};
   for (int k = 0; k < layers; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {

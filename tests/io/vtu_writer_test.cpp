@@ -59,9 +59,9 @@ void write_with_vtk(const VolumeMesh& m, const std::string& path, VtkCompressor 
   grid->SetCells(types, cells);
   auto add = [](const DataArray& a, vtkFieldData* to) {
     vtkSmartPointer<vtkDataArray> arr;
-    if (a.integer) {
+    if (a.integer()) {
       arr = vtkSmartPointer<vtkIntArray>::New();
-    } else if (a.single_precision) {
+    } else if (a.single_precision()) {
       arr = vtkSmartPointer<vtkFloatArray>::New();
     } else {
       arr = vtkSmartPointer<vtkDoubleArray>::New();
@@ -217,9 +217,9 @@ VolumeMesh stacked_wedges(int n, int layers) {
         m.add_cell(CellType::kWedge, w1);
         m.add_cell(CellType::kWedge, w2);
       }
-  DataArray height{"column_height", 1, false, {}};
+  DataArray height{"column_height", 1, std::vector<double>{}};
   for (const Vec3& p : m.points) height.values.push_back(p[2] / 3.0);
-  DataArray layer{"layer", 1, true, {}}, volume{"volume", 1, false, {}, /*single_precision=*/true};
+  DataArray layer{"layer", 1, ArrayValues(ValueType::kInt32)}, volume{"volume", 1, ArrayValues(ValueType::kFloat32, std::vector<double>{})};
   for (std::size_t c = 0; c < m.n_cells(); ++c) {
     layer.values.push_back(static_cast<double>(c / (2 * n * n)));
     volume.values.push_back(1.0 / (1.0 + static_cast<double>(c % 7)));
@@ -254,8 +254,8 @@ TEST(VtuWriter, ArraysOfWholeBlocksAreVtksOwnText) {
 
 TEST(VtuWriter, EmptyArraysAreVtksOwnText) {
   VolumeMesh m;
-  m.point_data = {{"column_height", 1, false, {}}};
-  m.cell_data = {{"layer", 1, true, {}}};
+  m.point_data = {{"column_height", 1, ArrayValues(ValueType::kFloat64)}};
+  m.cell_data = {{"layer", 1, ArrayValues(ValueType::kInt32)}};
   expect_same_arrays_as_vtk(m, VtkCompressor::kZlib);
 }
 

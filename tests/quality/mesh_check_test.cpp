@@ -23,7 +23,7 @@ VolumeMesh prism_column(const std::vector<double>& z) {
     m.points.push_back({1, 0, h});
     m.points.push_back({0, 1, h});
   }
-  DataArray layer{"layer", 1, true, {}};
+  DataArray layer{"layer", 1, ArrayValues(ValueType::kInt32)};
   for (std::size_t k = 0; k + 1 < z.size(); ++k) {
     const auto b = static_cast<std::int64_t>(3 * k), t = b + 3;
     const std::int64_t nodes[6] = {b, b + 2, b + 1, t, t + 2, t + 1};  // (a, c, b, a', c', b')
@@ -67,11 +67,11 @@ TEST(MeshCheck, InvertedCellIsCountedAndExtractedWithItsArrays) {
   EXPECT_EQ(bad.points.size(), 6u);
   const DataArray* original = bad.find_cell_array("original_cell_id");
   ASSERT_NE(original, nullptr);
-  EXPECT_EQ(original->values, std::vector<double>{1.0});
+  EXPECT_EQ(original->values, ArrayValues(std::vector<std::int32_t>{1}));
   ASSERT_NE(bad.find_cell_array("layer"), nullptr);
-  EXPECT_EQ(bad.find_cell_array("layer")->values, std::vector<double>{1.0});
+  EXPECT_EQ(bad.find_cell_array("layer")->values, ArrayValues(std::vector<std::int32_t>{1}));
   ASSERT_NE(bad.find_cell_array("validity"), nullptr);
-  EXPECT_EQ(bad.find_cell_array("validity")->values, std::vector<double>{2.0});
+  EXPECT_EQ(bad.find_cell_array("validity")->values, ArrayValues(std::vector<std::int32_t>{2}));
 }
 
 TEST(MeshCheck, FlatPrismIsCountedAsFlat) {
@@ -229,8 +229,9 @@ TEST(MeshCheck, QualityArraysAreAddedOncePerName) {
     ASSERT_NE(m.find_cell_array(name), nullptr);
     EXPECT_EQ(m.find_cell_array(name)->values.size(), 2u) << name;
   }
-  EXPECT_TRUE(m.find_cell_array("validity")->integer);
-  EXPECT_NEAR(m.find_cell_array("aspect_ratio")->values[0], (2.0 + std::sqrt(2.0)) / 3.0 / 0.1, kMetricTol);
+  EXPECT_TRUE(m.find_cell_array("validity")->integer());
+  // Stored as Float32: the metric rounded to float (within gtest's 4 float ulps).
+  EXPECT_FLOAT_EQ(m.find_cell_array("aspect_ratio")->values[0], (2.0 + std::sqrt(2.0)) / 3.0 / 0.1);
 }
 
 TEST(MeshCheck, MovedQualityArraysEqualCopiedOnesAndTheReportKeepsItsTotals) {
@@ -246,8 +247,8 @@ TEST(MeshCheck, MovedQualityArraysEqualCopiedOnesAndTheReportKeepsItsTotals) {
     const DataArray& a = copied.cell_data[i];
     const DataArray& b = moved.cell_data[i];
     EXPECT_EQ(a.name, b.name);
-    EXPECT_EQ(a.integer, b.integer) << a.name;
-    EXPECT_EQ(a.single_precision, b.single_precision) << a.name;
+    EXPECT_EQ(a.integer(), b.integer()) << a.name;
+    EXPECT_EQ(a.single_precision(), b.single_precision()) << a.name;
     ASSERT_EQ(a.values.size(), b.values.size()) << a.name;
     for (std::size_t c = 0; c < a.values.size(); ++c)
       EXPECT_TRUE(a.values[c] == b.values[c] || (std::isnan(a.values[c]) && std::isnan(b.values[c])))

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "blayer/core/data_array.h"
 #include "blayer/core/errors.h"
 #include "blayer/core/vec3.h"
 
@@ -35,18 +36,6 @@ inline const char* cell_type_name(CellType t) {
   }
   return "unknown";
 }
-
-// A named array of n_tuples x n_components values. Integer-valued arrays are written
-// as Int32 so ParaView shows them as categories; single_precision arrays (quality
-// metrics, meant for viewing and thresholding) as Float32, which halves their size on
-// disk; all others as Float64.
-struct DataArray {
-  std::string name;
-  int n_components = 1;
-  bool integer = false;
-  std::vector<double> values;
-  bool single_precision = false;
-};
 
 // A point id in a cell's connectivity. 32 bits: the connectivity is the largest array
 // of a layer mesh, and 64-bit ids made it a fifth of a run's peak memory. Meshes of

@@ -89,6 +89,8 @@ struct LayerCheck {
 inline constexpr std::array<const char*, 7> kCheckMetricNames = {
     "min_corner_jacobian", "skewness", "aspect_ratio", "orthogonality_deg",
     "twist", "growth_ratio", "volume"};
+// The signed cell volume's place among them.
+inline constexpr std::size_t kVolumeMetric = 6;
 
 struct MeshCheckReport {
   std::size_t n_points = 0;
