@@ -1,12 +1,11 @@
 #include "blayer/io/cgns_writer.h"
 
-#include <cgnslib.h>
-
 #include <array>
 #include <limits>
 #include <vector>
 
 #include "blayer/core/errors.h"
+#include "cgns_library.h"
 
 namespace blayer {
 
@@ -15,24 +14,27 @@ namespace {
 // Every CGNS call goes through this: a non-zero status becomes an IoError.
 class CgnsFile {
  public:
-  CgnsFile(const std::string& path, const std::string& target) : target_(target) {
-    check(cg_open(path.c_str(), CG_MODE_WRITE, &fn_), "cannot create the file");
+  CgnsFile(const std::string& path, const std::string& target)
+      : cg(detail::cgns_library(target)), target_(target) {
+    check(cg.open(path.c_str(), CG_MODE_WRITE, &fn_), "cannot create the file");
   }
   ~CgnsFile() {
-    if (fn_ >= 0) cg_close(fn_);
+    if (fn_ >= 0) cg.close(fn_);
   }
   CgnsFile(const CgnsFile&) = delete;
   CgnsFile& operator=(const CgnsFile&) = delete;
 
   int fn() const { return fn_; }
   void check(int status, const char* what) const {
-    if (status != CG_OK) throw IoError(target_ + ": " + what + " (CGNS: " + cg_get_error() + ")");
+    if (status != CG_OK) throw IoError(target_ + ": " + what + " (CGNS: " + cg.get_error() + ")");
   }
   void close() {
-    const int status = cg_close(fn_);
+    const int status = cg.close(fn_);
     fn_ = -1;
     check(status, "cannot finish the file");
   }
+
+  const detail::CgnsLibrary& cg;
 
  private:
   std::string target_;
@@ -84,13 +86,13 @@ void write_coordinates(const CgnsFile& f, int base, int zone, const SolverMesh& 
   for (int d = 0; d < 3; ++d) {
     for (std::size_t p = 0; p < xyz.size(); ++p) xyz[p] = m.cells.points[p][d];
     int c = 0;
-    f.check(cg_coord_write(f.fn(), base, zone, CGNS_ENUMV(RealDouble), names[d], xyz.data(), &c),
+    f.check(f.cg.coord_write(f.fn(), base, zone, CGNS_ENUMV(RealDouble), names[d], xyz.data(), &c),
             "cannot write the coordinates");
     // A length: exponent 1 of mass, length, time, temperature, angle = (0, 1, 0, 0, 0).
     const double length_exponents[5] = {0, 1, 0, 0, 0};
-    f.check(cg_goto(f.fn(), base, "Zone_t", zone, "GridCoordinates_t", 1, "DataArray_t", c, "end"),
+    f.check(f.cg.go_to(f.fn(), base, "Zone_t", zone, "GridCoordinates_t", 1, "DataArray_t", c, "end"),
             "cannot reach a coordinate array");
-    f.check(cg_exponents_write(CGNS_ENUMV(RealDouble), length_exponents), "cannot write the coordinates' dimensions");
+    f.check(f.cg.exponents_write(CGNS_ENUMV(RealDouble), length_exponents), "cannot write the coordinates' dimensions");
   }
 }
 
@@ -109,7 +111,7 @@ cgsize_t write_volume_sections(const CgnsFile& f, int base, int zone, const Solv
     if (conn.empty()) continue;
     const cgsize_t count = static_cast<cgsize_t>(conn.size() / n);
     int section = 0;
-    f.check(cg_section_write(f.fn(), base, zone, s.name, s.cgns_type, next, next + count - 1, 0, conn.data(), &section),
+    f.check(f.cg.section_write(f.fn(), base, zone, s.name, s.cgns_type, next, next + count - 1, 0, conn.data(), &section),
             "cannot write a cell section");
     next += count;
   }
@@ -127,7 +129,7 @@ cgsize_t write_face_section(const CgnsFile& f, int base, int zone, const SolverM
   const cgsize_t count = static_cast<cgsize_t>(conn.size() / n);
   if (count == 0) return 0;
   int section = 0;
-  f.check(cg_section_write(f.fn(), base, zone, name.c_str(), n == 3 ? CGNS_ENUMV(TRI_3) : CGNS_ENUMV(QUAD_4), first,
+  f.check(f.cg.section_write(f.fn(), base, zone, name.c_str(), n == 3 ? CGNS_ENUMV(TRI_3) : CGNS_ENUMV(QUAD_4), first,
                            first + count - 1, 0, conn.data(), &section),
           "cannot write a boundary section");
   return count;
@@ -144,17 +146,17 @@ void write_patch(const CgnsFile& f, int base, int zone, const SolverMesh& m, con
   const cgsize_t last = first + static_cast<cgsize_t>(p.size) - 1;
 
   int family = 0, family_bc = 0;
-  f.check(cg_family_write(f.fn(), base, p.name.c_str(), &family), "cannot write a family");
-  f.check(cg_fambc_write(f.fn(), base, family, "FamBC", bc_type(p.kind), &family_bc), "cannot write a family BC");
+  f.check(f.cg.family_write(f.fn(), base, p.name.c_str(), &family), "cannot write a family");
+  f.check(f.cg.fambc_write(f.fn(), base, family, "FamBC", bc_type(p.kind), &family_bc), "cannot write a family BC");
 
   const cgsize_t range[2] = {first, last};
   int bc = 0;
-  f.check(cg_boco_write(f.fn(), base, zone, p.name.c_str(), bc_type(p.kind), CGNS_ENUMV(PointRange), 2, range, &bc),
+  f.check(f.cg.boco_write(f.fn(), base, zone, p.name.c_str(), bc_type(p.kind), CGNS_ENUMV(PointRange), 2, range, &bc),
           "cannot write a boundary condition");
-  f.check(cg_boco_gridlocation_write(f.fn(), base, zone, bc, CGNS_ENUMV(FaceCenter)),
+  f.check(f.cg.boco_gridlocation_write(f.fn(), base, zone, bc, CGNS_ENUMV(FaceCenter)),
           "cannot write a boundary condition's location");
-  f.check(cg_goto(f.fn(), base, "Zone_t", zone, "ZoneBC_t", 1, "BC_t", bc, "end"), "cannot reach a boundary condition");
-  f.check(cg_famname_write(p.name.c_str()), "cannot write a boundary condition's family name");
+  f.check(f.cg.go_to(f.fn(), base, "Zone_t", zone, "ZoneBC_t", 1, "BC_t", bc, "end"), "cannot reach a boundary condition");
+  f.check(f.cg.famname_write(p.name.c_str()), "cannot write a boundary condition's family name");
 }
 
 }  // namespace
@@ -163,12 +165,12 @@ void write_cgns(const SolverMesh& mesh, const std::string& path, const std::stri
   check_size_limits(mesh, target);
   CgnsFile f(path, target);
   int base = 0, zone = 0;
-  f.check(cg_base_write(f.fn(), "blayer", 3, 3, &base), "cannot write the base");
+  f.check(f.cg.base_write(f.fn(), "blayer", 3, 3, &base), "cannot write the base");
   // Coordinates are in the input surface's length unit, which blayer does not know.
-  f.check(cg_goto(f.fn(), base, "end"), "cannot reach the base");
-  f.check(cg_dataclass_write(CGNS_ENUMV(NormalizedByUnknownDimensional)), "cannot write the data class");
+  f.check(f.cg.go_to(f.fn(), base, "end"), "cannot reach the base");
+  f.check(f.cg.dataclass_write(CGNS_ENUMV(NormalizedByUnknownDimensional)), "cannot write the data class");
   cgsize_t size[3] = {static_cast<cgsize_t>(mesh.cells.points.size()), static_cast<cgsize_t>(mesh.cells.n_cells()), 0};
-  f.check(cg_zone_write(f.fn(), base, "fluid", size, CGNS_ENUMV(Unstructured), &zone), "cannot write the zone");
+  f.check(f.cg.zone_write(f.fn(), base, "fluid", size, CGNS_ENUMV(Unstructured), &zone), "cannot write the zone");
   write_coordinates(f, base, zone, mesh);
   cgsize_t next = write_volume_sections(f, base, zone, mesh);
   for (const BoundaryPatch& p : mesh.patches) {
