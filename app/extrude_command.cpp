@@ -1,7 +1,4 @@
 #include <unistd.h>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #include <algorithm>
 #include <cstdint>
@@ -12,6 +9,7 @@
 #include <optional>
 
 #include "blayer/core/errors.h"
+#include "blayer/core/free_heap.h"
 #include "blayer/core/stopwatch.h"
 #include "blayer/extruder/extrude_layers.h"
 #include "blayer/fill/fill_envelope.h"
@@ -29,15 +27,6 @@
 namespace blayer {
 
 namespace {
-
-// Returns the heap's free pages to the system. The march frees its working state, a
-// third of its peak, and glibc keeps the freed pages resident; the check's arrays did
-// not reuse most of them, and added to them instead.
-void release_free_heap() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
 
 ExtrusionParams extrusion_params(const ParamValues& p, const TriSurface& wall, std::vector<std::string>* notes) {
   ExtrusionParams e;
