@@ -65,7 +65,7 @@ struct TriangleBvh::Builder {
       accumulate(&b, &n, boxes[items[i]]);
       accumulate(&cb, &nc, Box{centre[items[i]], centre[items[i]]});
     }
-    (*nodes)[node].box = b;
+    (*nodes)[node].box = FloatBox::enclosing(b);
     if (count <= kLeafSize) {
       (*nodes)[node].first = first;
       (*nodes)[node].count = count;
@@ -144,7 +144,7 @@ void TriangleBvh::build(const std::vector<Box>& boxes) {
   // the vector's growth would otherwise leave up to half of it spare for the run.
   nodes_.shrink_to_fit();
   item_box_.resize(n);
-  for (int i = 0; i < n; ++i) item_box_[i] = boxes[items_[i]];
+  for (int i = 0; i < n; ++i) item_box_[i] = FloatBox::enclosing(boxes[items_[i]]);
 }
 
 void TriangleBvh::refit(const std::vector<Box>& boxes) {
@@ -158,10 +158,10 @@ void TriangleBvh::refit_nodes() {
     Node& nd = nodes_[i];
     if (nd.count > 0) {
       nd.box = item_box_[nd.first];
-      for (int j = nd.first + 1; j < nd.first + nd.count; ++j) unite(&nd.box, item_box_[j]);
+      for (int j = nd.first + 1; j < nd.first + nd.count; ++j) nd.box.unite(item_box_[j]);
     } else {
       nd.box = nodes_[nd.first].box;
-      unite(&nd.box, nodes_[nd.first + nd.left_nodes].box);
+      nd.box.unite(nodes_[nd.first + nd.left_nodes].box);
     }
   }
 }

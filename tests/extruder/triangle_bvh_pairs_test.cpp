@@ -1,6 +1,8 @@
 // The BVH's pair traversals (TriangleBvh::for_each_overlapping_pair) against the
 // brute-force oracle: every pair of boxes tested against every other; and its segment
-// queries against every box's slab test. Boxes come as the
+// queries against every box's slab test. The trees keep their boxes rounded outwards to
+// floats (FloatBox), so a query must find everything the oracle finds on the exact
+// boxes, and nothing the oracle does not find on the boxes grown by a float's rounding. Boxes come as the
 // extruder makes them (a wavy sheet of triangles and the same sheet lifted by less than
 // a triangle's size, so that most boxes overlap several others) and at random; the
 // wanted masks are all, none and random.
@@ -9,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <random>
 #include <set>
@@ -55,6 +58,29 @@ std::vector<char> random_mask(std::mt19937& rng, int n, double share) {
   return m;
 }
 
+// The box grown by a float's rounding: relative 2^-23 of each bound, plus the smallest
+// normal float for bounds that round to subnormals.
+Box grown(const Box& b) {
+  Box g;
+  for (int k = 0; k < 3; ++k) {
+    g.lo[k] = b.lo[k] - 0x1p-23 * std::fabs(b.lo[k]) - 0x1p-126;
+    g.hi[k] = b.hi[k] + 0x1p-23 * std::fabs(b.hi[k]) + 0x1p-126;
+  }
+  return g;
+}
+
+std::vector<Box> grown(const std::vector<Box>& boxes) {
+  std::vector<Box> g;
+  for (const Box& b : boxes) g.push_back(grown(b));
+  return g;
+}
+
+// Whether found holds every pair of `exact` and nothing beyond `loose`.
+bool between(const Pairs& found, const Pairs& exact, const Pairs& loose) {
+  return std::includes(found.begin(), found.end(), exact.begin(), exact.end()) &&
+         std::includes(loose.begin(), loose.end(), found.begin(), found.end());
+}
+
 Pairs brute_pairs(const std::vector<Box>& a, const std::vector<char>& wanted, const std::vector<Box>& b) {
   Pairs out;
   for (int i = 0; i < static_cast<int>(a.size()); ++i)
@@ -95,10 +121,10 @@ void expect_same_pairs_as_brute_force(const std::vector<Box>& a, const std::vect
   ta.for_each_overlapping_pair(wanted, nodes, [&](int i, int j) { self.add(std::min(i, j), std::max(i, j)); });
   EXPECT_EQ(two.repeats, 0);
   EXPECT_EQ(self.repeats, 0);
-  EXPECT_TRUE(two.pairs == brute_pairs(a, wanted, b)) << two.pairs.size() << " pairs against "
-                                                      << brute_pairs(a, wanted, b).size();
-  EXPECT_TRUE(self.pairs == brute_self_pairs(a, wanted)) << self.pairs.size() << " pairs against "
-                                                         << brute_self_pairs(a, wanted).size();
+  EXPECT_TRUE(between(two.pairs, brute_pairs(a, wanted, b), brute_pairs(grown(a), wanted, grown(b))))
+      << two.pairs.size() << " pairs against " << brute_pairs(a, wanted, b).size();
+  EXPECT_TRUE(between(self.pairs, brute_self_pairs(a, wanted), brute_self_pairs(grown(a), wanted)))
+      << self.pairs.size() << " pairs against " << brute_self_pairs(a, wanted).size();
 }
 
 TEST(TriangleBvhPairs, LiftedSheetAgainstItsWallFindsEveryOverlapOnce) {
@@ -136,8 +162,8 @@ TEST(TriangleBvhPairs, RefittedTreesFindTheNewOverlaps) {
   Visited two, self;
   front.for_each_overlapping_pair(wanted, nodes, base, [&](int i, int j) { two.add(i, j); });
   front.for_each_overlapping_pair(wanted, nodes, [&](int i, int j) { self.add(std::min(i, j), std::max(i, j)); });
-  EXPECT_TRUE(two.pairs == brute_pairs(moved, wanted, wall));
-  EXPECT_TRUE(self.pairs == brute_self_pairs(moved, wanted));
+  EXPECT_TRUE(between(two.pairs, brute_pairs(moved, wanted, wall), brute_pairs(grown(moved), wanted, grown(wall))));
+  EXPECT_TRUE(between(self.pairs, brute_self_pairs(moved, wanted), brute_self_pairs(grown(moved), wanted)));
   EXPECT_EQ(two.repeats + self.repeats, 0);
 }
 
@@ -202,15 +228,19 @@ void expect_segment_visits_as_brute_force(const TriangleBvh& tree, const std::ve
                                           const Vec3& d, double t_max) {
   bool repeated = false;
   const std::vector<int> order = visited_on_segment(tree, o, d, t_max, &repeated);
-  std::set<int> expected;
-  for (int i = 0; i < static_cast<int>(boxes.size()); ++i)
+  std::set<int> expected, loose;
+  for (int i = 0; i < static_cast<int>(boxes.size()); ++i) {
     if (brute_segment_hits(o, d, t_max, boxes[i])) expected.insert(i);
+    if (brute_segment_hits(o, d, t_max, grown(boxes[i]))) loose.insert(i);
+  }
   EXPECT_FALSE(repeated);
-  EXPECT_TRUE(std::set<int>(order.begin(), order.end()) == expected)
+  const std::set<int> visited(order.begin(), order.end());
+  EXPECT_TRUE(std::includes(visited.begin(), visited.end(), expected.begin(), expected.end()) &&
+              std::includes(loose.begin(), loose.end(), visited.begin(), visited.end()))
       << boxes.size() << " boxes: " << order.size() << " visited against " << expected.size();
 }
 
-TEST(TriangleBvhSegments, EverySegmentVisitsExactlyTheBoxesItCrosses) {
+TEST(TriangleBvhSegments, EverySegmentVisitsTheBoxesItCrosses) {
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> at(0.0, 10.0), dir(-1.0, 1.0), len(0.1, 6.0);
   // 70,000 boxes: the subtrees spliced after a parallel build are themselves spliced.
@@ -290,6 +320,37 @@ TEST(TriangleBvhSegments, TheTreeIsTheSameWhateverTheNumberOfThreads) {
     EXPECT_FALSE(a.empty());
     EXPECT_TRUE(a == b) << "query " << q;
   }
+}
+
+TEST(FloatBox, BoundsAreTheNearestFloatsOutside) {
+  const float inf = std::numeric_limits<float>::infinity();
+  for (double x : {0.0, -0.0, 0.1, -0.1, 1.0 / 3.0, 1.5, -1.5, 1e-300, -1e-300, 5e-324, 1e-40, 1e300, -1e300,
+                   3.4028235677973366e38, 3.5e38, 123456789.123}) {
+    const float lo = FloatBox::round_down(x), hi = FloatBox::round_up(x);
+    EXPECT_LE(lo, x) << x;
+    EXPECT_GE(hi, x) << x;
+    // The nearest: the next float inwards is on the other side of x (or x is that float).
+    if (lo != x) EXPECT_GT(std::nextafter(lo, inf), x) << x;
+    if (hi != x) EXPECT_LT(std::nextafter(hi, -inf), x) << x;
+  }
+  EXPECT_EQ(FloatBox::round_down(0.75), 0.75f);  // floats stay themselves
+  EXPECT_EQ(FloatBox::round_up(0.75), 0.75f);
+  EXPECT_TRUE(std::isnan(FloatBox::round_down(std::nan(""))));
+}
+
+TEST(TriangleBvhPairs, BoxesTouchingAtBoundsNoFloatHoldsStillOverlap) {
+  // 0.1 has no float: each pair touches (or misses by 1e-12, far below a float step)
+  // at such a bound. The touching pairs must be found; the near misses may be.
+  std::vector<Box> a, b;
+  for (int i = 0; i < 50; ++i) {
+    const double x = 0.1 * (i + 1);
+    a.push_back(Box{{x - 0.05, 0.0, 0.0}, {x, 1.0, 1.0}});
+    b.push_back(Box{{x + (i % 2 ? 1e-12 : 0.0), 0.0, 0.0}, {x + 0.01, 1.0, 1.0}});
+  }
+  const std::vector<char> all(a.size(), 1);
+  const Pairs exact = brute_pairs(a, all, b);
+  ASSERT_EQ(exact.size(), 25u);  // the touching half; the misses are not exact overlaps
+  expect_same_pairs_as_brute_force(a, b, all);
 }
 
 }  // namespace

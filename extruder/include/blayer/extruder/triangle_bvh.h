@@ -21,7 +21,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -50,6 +52,46 @@ struct Box {
   }
 };
 
+// A box in single precision, rounded outwards so that it holds the box it was made
+// from. The trees only prune: every item they pass is decided by the caller's own test,
+// so a box larger by a float's rounding changes which items are tried, never a result.
+// Half the size of a Box: the boxes are most of a tree's memory, and a run holds three
+// trees (the wall and two fronts).
+struct FloatBox {
+  float lo[3] = {0.0f, 0.0f, 0.0f};
+  float hi[3] = {0.0f, 0.0f, 0.0f};
+
+  static FloatBox enclosing(const Box& b) {
+    FloatBox f;
+    for (int i = 0; i < 3; ++i) {
+      f.lo[i] = round_down(b.lo[i]);
+      f.hi[i] = round_up(b.hi[i]);
+    }
+    return f;
+  }
+  bool overlaps(const FloatBox& o) const {
+    for (int i = 0; i < 3; ++i)
+      if (lo[i] > o.hi[i] || o.lo[i] > hi[i]) return false;
+    return true;
+  }
+  void unite(const FloatBox& o) {
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], o.lo[i]);
+      hi[i] = std::max(hi[i], o.hi[i]);
+    }
+  }
+
+  // The largest float <= x and the smallest >= x (+-inf beyond the float range; NaN
+  // stays NaN, which overlaps everything, as a NaN double box does).
+  static float round_down(double x) {
+    if (x > std::numeric_limits<float>::max()) return std::numeric_limits<float>::max();
+    if (x < -std::numeric_limits<float>::max()) return -std::numeric_limits<float>::infinity();
+    const float f = static_cast<float>(x);
+    return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+  }
+  static float round_up(double x) { return -round_down(-x); }
+};
+
 class TriangleBvh {
  public:
   static constexpr int kLeafSize = 4;
@@ -68,7 +110,7 @@ class TriangleBvh {
   template <class BoxOf>
   void refit_each(BoxOf&& box_of) {
     const int n = static_cast<int>(items_.size());
-    tbb::parallel_for(0, n, [&](int i) { item_box_[i] = box_of(items_[i]); });
+    tbb::parallel_for(0, n, [&](int i) { item_box_[i] = FloatBox::enclosing(box_of(items_[i])); });
     refit_nodes();
   }
 
@@ -177,7 +219,9 @@ class TriangleBvh {
 
   // Which of two nodes the pair traversals split: the larger by the sum of its box's
   // extents (volumes would tie at 0 for the flat boxes of axis-aligned faces).
-  static double extent(const Box& b) { return (b.hi[0] - b.lo[0]) + (b.hi[1] - b.lo[1]) + (b.hi[2] - b.lo[2]); }
+  static double extent(const FloatBox& b) {
+    return (double{b.hi[0]} - b.lo[0]) + (double{b.hi[1]} - b.lo[1]) + (double{b.hi[2]} - b.lo[2]);
+  }
 
   // Node pairs from (0, 0): expanded breadth-first by descend(a, b, push) until there
   // are enough for the threads, then each seed pair's subtree pairs on a stack of its
@@ -214,16 +258,18 @@ class TriangleBvh {
 
   struct Builder;
   struct Node {
-    Box box;
+    FloatBox box;
     int first = 0;       // leaf: first index into items_; inner: index of the left child
     int count = 0;       // leaf: number of items (> 0); inner: 0
     int left_nodes = 0;  // inner: node count of the left subtree (right child follows it)
   };
 
-  static bool segment_hits_box(const Vec3& o, const Vec3& inv, double t_max, const Box& b) {
+  // The slab test in doubles: its bounds grow with the box's (each rounded step is
+  // monotone), so a float box passes every segment its double box would.
+  static bool segment_hits_box(const Vec3& o, const Vec3& inv, double t_max, const FloatBox& b) {
     double t0 = 0.0, t1 = t_max;
     for (int i = 0; i < 3; ++i) {
-      double a = (b.lo[i] - o[i]) * inv[i], c = (b.hi[i] - o[i]) * inv[i];
+      double a = (double{b.lo[i]} - o[i]) * inv[i], c = (double{b.hi[i]} - o[i]) * inv[i];
       if (a > c) std::swap(a, c);
       // NaN from 0 * inf (origin on a slab plane of a parallel ray) counts as inside.
       if (a == a) t0 = std::max(t0, a);
@@ -250,7 +296,7 @@ class TriangleBvh {
 
   std::vector<Node> nodes_;
   std::vector<int> items_;
-  std::vector<Box> item_box_;  // item_box_[i] = boxes[items_[i]]
+  std::vector<FloatBox> item_box_;  // item_box_[i] encloses boxes[items_[i]]
 };
 
 }  // namespace blayer
