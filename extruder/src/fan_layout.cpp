@@ -1,5 +1,7 @@
 #include "blayer/extruder/fan_layout.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -203,19 +205,23 @@ class LayoutBuilder {
     plain_column_.assign(nv_, -1);
     sectors_.resize(nv_);
     sector_dir_.resize(nv_);
+    // The sectors' normals are independent solves, most of the layout's time where a
+    // CAD surface has thousands of fan points: solved in parallel, then the columns are
+    // numbered in point order as before.
+    tbb::parallel_for(0, nv_, [&](int v) {
+      if (!is_fan_[v]) return;
+      const VertexFan& fan = fans_.fans[v];
+      sectors_[v] = sectors_of(fan, v, ridge_index_);
+      for (std::size_t s = 0; s < sectors_[v].first.size(); ++s)
+        sector_dir_[v].push_back(sector_normal(wall_, fan, v, sectors_[v], static_cast<int>(s), method_));
+    });
     for (int v = 0; v < nv_; ++v) {
       if (!is_fan_[v]) {
         plain_column_[v] = add_column(v, Vec3{0.0, 0.0, 0.0}, false, false);
         continue;
       }
       ++out_.n_fan_points;
-      const VertexFan& fan = fans_.fans[v];
-      sectors_[v] = sectors_of(fan, v, ridge_index_);
-      for (std::size_t s = 0; s < sectors_[v].first.size(); ++s) {
-        const Vec3 n = sector_normal(wall_, fan, v, sectors_[v], static_cast<int>(s), method_);
-        sector_dir_[v].push_back(n);
-        sectors_[v].column.push_back(add_column(v, n, true, false));
-      }
+      for (const Vec3& n : sector_dir_[v]) sectors_[v].column.push_back(add_column(v, n, true, false));
     }
   }
 

@@ -54,25 +54,32 @@ FanPrecheck::Round FanPrecheck::round_of(const TriSurface& wall, const ColumnLay
                                          const WallPlanes& planes, const StepDirections& dirs, const ColumnPlan& plan,
                                          const ExtrusionParams& params) {
   const int nc = layout.n_columns();
+  // Each column's run has a known length (its point, its layer count, three words per
+  // layer): laid out first, then the columns are filled and hashed in parallel.
+  std::vector<int> grown(nc);
   Round r;
-  r.run_start.push_back(0);
+  r.run_start.assign(static_cast<std::size_t>(nc) + 1, 0);
   for (int c = 0; c < nc; ++c) {
+    grown[c] = dirs.ok[c] ? std::min(plan.planned_layers[c], plan.n_layers) : 0;
+    r.run_start[c + 1] = r.run_start[c] + 2 + 3 * static_cast<std::size_t>(grown[c]);
+  }
+  r.runs.resize(r.run_start[nc]);
+  r.by_hash.resize(nc);
+  tbb::parallel_for(0, nc, [&](int c) {
     const int w = layout.wall_point[c];
-    const int m = dirs.ok[c] ? std::min(plan.planned_layers[c], plan.n_layers) : 0;
-    r.runs.push_back(static_cast<std::uint64_t>(w));
-    r.runs.push_back(static_cast<std::uint64_t>(m));
+    const int m = grown[c];
+    std::uint64_t* out = r.runs.data() + r.run_start[c];
+    *out++ = static_cast<std::uint64_t>(w);
+    *out++ = static_cast<std::uint64_t>(m);
     const Vec3& p = wall.points[w];
     for (int k = 0; k < m; ++k) {
       const double h = plan.cumulative(c, k);
       const Vec3 top =
           p + std::clamp(planes.step_to_height(c, p, dirs.n[c], h), h, params.max_step_stretch * h) * dirs.n[c];
-      for (double x : top) r.runs.push_back(bits(x));
+      for (double x : top) *out++ = bits(x);
     }
-    r.run_start.push_back(r.runs.size());
-  }
-  r.by_hash.resize(nc);
-  for (int c = 0; c < nc; ++c)
     r.by_hash[c] = {hash_words(r.runs.data() + r.run_start[c], r.run_start[c + 1] - r.run_start[c]), c};
+  });
   std::sort(r.by_hash.begin(), r.by_hash.end());
   return r;
 }
@@ -96,19 +103,19 @@ std::vector<signed char> FanPrecheck::passed_before(const ColumnLayout& layout, 
                                                     const Round& current) const {
   const int nc = layout.n_columns();
   std::vector<int> previous_run(nc);
-  for (int c = 0; c < nc; ++c) {
+  tbb::parallel_for(0, nc, [&](int c) {
     const std::size_t begin = current.run_start[c], n = current.run_start[c + 1] - begin;
     const std::uint64_t* t = current.runs.data() + begin;
     previous_run[c] = previous_.find(t, n, hash_words(t, n));
-  }
+  });
   std::vector<signed char> passed(checked.size(), 0);
-  for (std::size_t x = 0; x < checked.size(); ++x) {
+  tbb::parallel_for(std::size_t{0}, checked.size(), [&](std::size_t x) {
     const LayerElement& e = layout.elements[checked[x]];
     bool known = true;
     for (int j = 0; j < e.n_columns() && known; ++j) known = previous_run[e.column[j]] >= 0;
     if (known && std::binary_search(previous_.passed.begin(), previous_.passed.end(), key_of(e, &previous_run)))
       passed[x] = 1;
-  }
+  });
   return passed;
 }
 
