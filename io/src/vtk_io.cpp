@@ -31,31 +31,21 @@ namespace {
 
 // Arrays are handed to VTK without a copy (the writer only reads them), which
 // keeps the peak memory of writing a large mesh close to the mesh itself.
+template <class VtkArray, class T>
+vtkSmartPointer<vtkDataArray> wrapped(const DataArray& a) {
+  const std::vector<T>& values = a.values.as<T>();
+  auto arr = vtkSmartPointer<VtkArray>::New();
+  arr->SetNumberOfComponents(a.n_components);
+  arr->SetArray(const_cast<T*>(values.data()), static_cast<vtkIdType>(values.size()), /*save=*/1);
+  return arr;
+}
+
 vtkSmartPointer<vtkDataArray> to_vtk(const DataArray& a) {
-  const vtkIdType n = static_cast<vtkIdType>(a.values.size());
   vtkSmartPointer<vtkDataArray> arr;
   switch (a.type()) {
-    case ValueType::kInt32: {
-      auto ia = vtkSmartPointer<vtkIntArray>::New();
-      ia->SetNumberOfComponents(a.n_components);
-      ia->SetArray(const_cast<std::int32_t*>(a.values.as<std::int32_t>().data()), n, /*save=*/1);
-      arr = ia;
-      break;
-    }
-    case ValueType::kFloat32: {
-      auto fa = vtkSmartPointer<vtkFloatArray>::New();
-      fa->SetNumberOfComponents(a.n_components);
-      fa->SetArray(const_cast<float*>(a.values.as<float>().data()), n, /*save=*/1);
-      arr = fa;
-      break;
-    }
-    case ValueType::kFloat64: {
-      auto da = vtkSmartPointer<vtkDoubleArray>::New();
-      da->SetNumberOfComponents(a.n_components);
-      da->SetArray(const_cast<double*>(a.values.as<double>().data()), n, /*save=*/1);
-      arr = da;
-      break;
-    }
+    case ValueType::kInt32: arr = wrapped<vtkIntArray, std::int32_t>(a); break;
+    case ValueType::kFloat32: arr = wrapped<vtkFloatArray, float>(a); break;
+    case ValueType::kFloat64: arr = wrapped<vtkDoubleArray, double>(a); break;
   }
   arr->SetName(a.name.c_str());
   return arr;
