@@ -148,6 +148,7 @@ MeshCheckReport decide_validity(VolumeMesh& mesh, std::size_t n_layer_cells, Mes
   MeshCheckReport check = check_volume_mesh(mesh);
   const std::vector<double>& volume = check.metrics[kVolumeMetric];
   for (std::size_t c = 0; c < volume.size(); ++c) (c < n_layer_cells ? volumes->layers : volumes->fill) += volume[c];
+  release_free_heap();  // the check's face tables, before the arrays below are made
   move_quality_arrays(mesh, &check);
   if (!check.ok())
     throw std::runtime_error("the assembled mesh failed the independent check (" +
