@@ -116,11 +116,14 @@ struct FanFailures {
 // delivers its mesh, before the output arrays that set the peak memory. precheck: the
 // run's, which carries each round's verdicts to the next (fan_precheck.h). normal_memo:
 // the run's wall normals of the earlier attempts (step_directions.h), or null.
-ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
+// shared_layout: the attempt's layout, which the checker reads without a copy.
+ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
+                      const std::shared_ptr<const ColumnLayout>& shared_layout,
                       const WallTopology& topo, const ExtrusionParams& params,
                       const std::function<void(int, int)>& progress, bool stop_at_failed_fans,
                       std::unique_ptr<WallTree>* wall_tree, FanPrecheck* precheck, FanFailures* fan_failures,
                       WallNormalMemo* normal_memo) {
+  const ColumnLayout& layout = *shared_layout;
   const Stopwatch total;
   ExtrusionResult res;
   ExtrusionReport& rep = res.report;
@@ -145,7 +148,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo, con
     }
     precheck->release();  // this attempt marches: its records would only add to the peak
   }
-  FrontChecker checker(wall, layout, topo, params, wall_tree->get());
+  FrontChecker checker(wall, shared_layout, topo, params, wall_tree->get());
   ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
   LayerAssembler assembler(wall, layout, dirs);
   assembler.reserve_layers(rep.growth.layers);
@@ -253,7 +256,8 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     FanFailures none;
     const double t_before = total.seconds();
     ExtrusionResult res =
-        march(wall, wall_topo, single_column_layout(wall), wall_topo, params, progress, false, &wall_tree, nullptr,
+        march(wall, wall_topo, std::make_shared<const ColumnLayout>(single_column_layout(wall)), wall_topo, params,
+              progress, false, &wall_tree, nullptr,
               &none, nullptr);
     res.report.t_setup += t_before;
     res.report.t_total = total.seconds();
@@ -267,7 +271,10 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   FanPrecheck fan_precheck;
   WallNormalMemo normal_memo;
   for (int attempt = 0;; ++attempt) {
-    const ColumnLayout layout = build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded);
+    // Shared with the march's checker, which reads it to the end.
+    const auto shared_layout = std::make_shared<const ColumnLayout>(
+        build_column_layout(wall, wall_topo.fans, fp, params.normal_method, excluded));
+    const ColumnLayout& layout = *shared_layout;
     const WallTopology column_topo = build_column_topology(layout, params.symmetry);
     // Setup counts everything before the march that delivers: the wall tables, the
     // layouts and the attempts whose fan points fell back.
@@ -275,7 +282,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     FanFailures failures;
     const bool last_attempt = attempt + 1 >= kMaxFanAttempts;
     ExtrusionResult res =
-        march(wall, wall_topo, layout, column_topo, params, progress, !last_attempt, &wall_tree,
+        march(wall, wall_topo, shared_layout, column_topo, params, progress, !last_attempt, &wall_tree,
               &fan_precheck, &failures, &normal_memo);
     std::vector<int>& precheck = failures.precheck;
     if (!precheck.empty()) {

@@ -60,11 +60,16 @@ Vec3 layer_cell_centre(const LayerCellFaces& c, FaceGeometry* geo) {
 }  // namespace
 
 FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params)
-    : FrontChecker(wall, single_column_layout(wall), topo, params) {}
+    : FrontChecker(wall, std::make_shared<const ColumnLayout>(single_column_layout(wall)), topo, params) {}
 
 FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
                            const ExtrusionParams& params, const WallTree* wall_tree)
-    : FrontChecker(wall, layout, topo, params.check_collisions, wall_tree) {
+    : FrontChecker(wall, std::make_shared<const ColumnLayout>(layout), topo, params, wall_tree) {}
+
+FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnLayout> layout_ptr,
+                           const WallTopology& topo, const ExtrusionParams& params, const WallTree* wall_tree)
+    : FrontChecker(wall, std::move(layout_ptr), topo, params.check_collisions, wall_tree) {
+  const ColumnLayout& layout = *layout_;
   if (!params.solver_limits.any()) return;
   // The acceptance passes judge the cells of the wall triangles, which are the first
   // front triangles, on their columns (fan_layout.h's contract).
@@ -134,23 +139,28 @@ void FrontChecker::build_edge_neighbours(const TriSurface& wall, const ColumnLay
 }
 
 FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions)
-    : FrontChecker(wall, single_column_layout(wall), topo, check_collisions) {}
+    : FrontChecker(wall, std::make_shared<const ColumnLayout>(single_column_layout(wall)), topo, check_collisions) {}
 
 FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
                            bool check_collisions, const WallTree* wall_tree)
+    : FrontChecker(wall, std::make_shared<const ColumnLayout>(layout), topo, check_collisions, wall_tree) {}
+
+FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnLayout> layout_ptr,
+                           const WallTopology& topo, bool check_collisions, const WallTree* wall_tree)
     : triangles_(&wall.triangles),
-      front_(layout.front.triangles),
-      elements_(layout.elements),
-      element_of_triangle_(layout.element_of_triangle),
-      wall_point_(layout.wall_point),
+      layout_(std::move(layout_ptr)),
+      front_(layout_->front.triangles),
+      elements_(layout_->elements),
+      element_of_triangle_(layout_->element_of_triangle),
+      wall_point_(layout_->wall_point),
       plane_(topo.plane),
       on_plane_(topo.on_plane),
       wall_points_(&wall.points),
       nv_(static_cast<int>(wall.points.size())),
-      nc_(layout.n_columns()),
+      nc_(layout_->n_columns()),
       nf_(static_cast<int>(wall.triangles.size())),
-      nt_(static_cast<int>(layout.front.triangles.size())),
-      ne_(static_cast<int>(layout.elements.size())),
+      nt_(static_cast<int>(layout_->front.triangles.size())),
+      ne_(static_cast<int>(layout_->elements.size())),
       check_collisions_(check_collisions) {
   if (!wall_tree) {
     own_wall_ = std::make_unique<WallTree>(wall);
@@ -161,7 +171,7 @@ FrontChecker::FrontChecker(const TriSurface& wall, const ColumnLayout& layout, c
     cur_tree_ = wall_->tree;
   } else {
     std::vector<Box> front_boxes(nt_);
-    const std::vector<Vec3>& P = layout.front.points;
+    const std::vector<Vec3>& P = layout_->front.points;
     tbb::parallel_for(0, nt_, [&](int f) {
       const Triangle& t = front_[f];
       front_boxes[f] = Box::of_triangle(P[t[0]], P[t[1]], P[t[2]]);

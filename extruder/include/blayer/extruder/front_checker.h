@@ -89,11 +89,17 @@ class FrontChecker {
   // run's, borrowed and to outlive the checker (null: the checker builds its own).
   FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo, bool check_collisions,
                const WallTree* wall_tree = nullptr);
+  // The same on a layout the checker shares instead of copying (the march's: a copy of
+  // a fanned layout's front and elements was 2.5 MB of a small run's peak).
+  FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnLayout> layout, const WallTopology& topo,
+               bool check_collisions, const WallTree* wall_tree = nullptr);
   // params.check_collisions and params.solver_limits. With fans the limits judge the
   // wall triangles' cells; fan strips, corner patches and the cells split at ridge ends
   // are checked exactly only (see the header comment).
   FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params);
   FrontChecker(const TriSurface& wall, const ColumnLayout& layout, const WallTopology& topo,
+               const ExtrusionParams& params, const WallTree* wall_tree = nullptr);
+  FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnLayout> layout, const WallTopology& topo,
                const ExtrusionParams& params, const WallTree* wall_tree = nullptr);
 
   // The wall alone, for the wall-gap cap before marching.
@@ -125,10 +131,13 @@ class FrontChecker {
   std::int64_t cur_id(int c) const { return (*layers_)[c] == 0 ? wall_point_[c] : nv_ + c; }
 
   const std::vector<Triangle>* triangles_;  // the wall's
-  std::vector<Triangle> front_;             // the front's, over the columns
-  std::vector<LayerElement> elements_;
-  std::vector<int> element_of_triangle_;
-  std::vector<int> wall_point_;
+  // The layout, shared (or the checker's own copy), and the parts of it the checks read:
+  // the front's triangles over the columns, the elements and their maps.
+  std::shared_ptr<const ColumnLayout> layout_;
+  const std::vector<Triangle>& front_;
+  const std::vector<LayerElement>& elements_;
+  const std::vector<int>& element_of_triangle_;
+  const std::vector<int>& wall_point_;
   std::optional<SymmetryPlane> plane_;
   std::vector<char> on_plane_;
   const std::vector<Vec3>* wall_points_;
