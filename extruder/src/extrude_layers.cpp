@@ -257,8 +257,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     const double t_before = total.seconds();
     ExtrusionResult res =
         march(wall, wall_topo, std::make_shared<const ColumnLayout>(single_column_layout(wall)), wall_topo, params,
-              progress, false, &wall_tree, nullptr,
-              &none, nullptr);
+              progress, false, &wall_tree, nullptr, &none, nullptr);
     res.report.t_setup += t_before;
     res.report.t_total = total.seconds();
     return res;

@@ -79,8 +79,7 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
 }
 
 void LayerAssembler::attach_arrays(const ColumnState& columns, VolumeMesh* mesh) {
-  const std::int64_t np = static_cast<std::int64_t>(point_column_.size());
-  const auto n = static_cast<std::size_t>(np);
+  const std::size_t n = point_column_.size();
   DataArray normal{"normal", 3, ArrayValues(ValueType::kFloat64, 3 * n)};
   DataArray height{"column_height", 1, ArrayValues(ValueType::kFloat64, n)};
   DataArray reason{"stop_reason", 1, ArrayValues(ValueType::kInt32, n)};
@@ -91,7 +90,7 @@ void LayerAssembler::attach_arrays(const ColumnState& columns, VolumeMesh* mesh)
   std::int32_t* reason_out = reason.values.as<std::int32_t>().data();
   std::int32_t* layers_out = layers.values.as<std::int32_t>().data();
   std::int32_t* fan_out = fan.values.as<std::int32_t>().data();
-  for (std::int64_t p = 0; p < np; ++p) {
+  for (std::size_t p = 0; p < n; ++p) {
     const int v = point_column_[p];
     for (int i = 0; i < 3; ++i) normal_out[3 * p + i] = point_normal_[p][i];
     if (v < 0) continue;  // a wall point no triangle uses
