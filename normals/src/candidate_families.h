@@ -260,36 +260,21 @@ void plateau_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* f
   }
 }
 
-// The local maxima of V = min over `faces` of n.f along the part of a plateau circle
-// inside the cap B(centre, cos_radius = cos of its radius): on the circle
-// n(t) = c0 h + s (cos t e1 + sin t e2) each term is a_i + b_i cos t + c_i sin t, and V,
-// their lower envelope, peaks at a peak of the term it follows or where it switches
-// terms. The envelope is swept from the window's start, switching to the first term that
-// crosses below; O(n_faces) per switch instead of all O(n_faces^2) pairwise equalities.
+// The local maxima of V = min over `faces` of n.f along a plateau circle between the
+// parameters t0 <= t1: on n(t) = c0 h + s (cos t e1 + sin t e2), e1 and e2 from
+// orthonormal_complement(h), each term is a_i + b_i cos t + c_i sin t, and V, their
+// lower envelope, peaks at a peak of the term it follows or where it switches terms. The
+// envelope is swept from t0, switching to the first term that crosses below; O(n_faces)
+// per switch instead of all O(n_faces^2) pairwise equalities. Both ends are offered.
 template <class Emit>
-void plateau_envelope_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* faces, int n_faces,
-                            const Vec3& centre, double cos_radius, std::vector<double>* ca, std::vector<double>* cb,
+void envelope_peaks_between(const FanGeometry& g, const PlateauCircle& circ, const int* faces, int n_faces,
+                            double t0, double t1, std::vector<double>* ca, std::vector<double>* cb,
                             std::vector<double>* cc, Emit&& emit) {
   if (n_faces == 0) return;
   Vec3 e1, e2;
   orthonormal_complement(circ.h, &e1, &e2);
   const double s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
   if (!(s > 0.0)) return;
-  // Window: n(t).centre >= cos_radius, i.e. r cos(t - tc) >= mu.
-  const double hc = dot(circ.h, centre), xc = dot(e1, centre), yc = dot(e2, centre);
-  const double r = s * std::hypot(xc, yc);
-  const double mu = cos_radius - circ.c0 * hc;
-  double t0, t1;
-  if (!(r > 0.0) || mu <= -r) {
-    t0 = 0.0;
-    t1 = 2.0 * M_PI;
-  } else if (mu > r) {
-    return;
-  } else {
-    const double tc = std::atan2(yc, xc), half = std::acos(mu / r);
-    t0 = tc - half;
-    t1 = tc + half;
-  }
   circle_terms(g, circ, faces, n_faces, e1, e2, s, ca, cb, cc);
   const double* a = ca->data();
   const double* b = cb->data();
@@ -339,6 +324,35 @@ void plateau_envelope_peaks(const FanGeometry& g, const PlateauCircle& circ, con
     cur = who;
   }
   at(t1);
+}
+
+// The same along the part of the circle inside the cap B(centre, cos_radius = cos of its
+// radius).
+template <class Emit>
+void plateau_envelope_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* faces, int n_faces,
+                            const Vec3& centre, double cos_radius, std::vector<double>* ca, std::vector<double>* cb,
+                            std::vector<double>* cc, Emit&& emit) {
+  if (n_faces == 0) return;
+  Vec3 e1, e2;
+  orthonormal_complement(circ.h, &e1, &e2);
+  const double s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
+  if (!(s > 0.0)) return;
+  // Window: n(t).centre >= cos_radius, i.e. r cos(t - tc) >= mu.
+  const double hc = dot(circ.h, centre), xc = dot(e1, centre), yc = dot(e2, centre);
+  const double r = s * std::hypot(xc, yc);
+  const double mu = cos_radius - circ.c0 * hc;
+  double t0, t1;
+  if (!(r > 0.0) || mu <= -r) {
+    t0 = 0.0;
+    t1 = 2.0 * M_PI;
+  } else if (mu > r) {
+    return;
+  } else {
+    const double tc = std::atan2(yc, xc), half = std::acos(mu / r);
+    t0 = tc - half;
+    t1 = tc + half;
+  }
+  envelope_peaks_between(g, circ, faces, n_faces, t0, t1, ca, cb, cc, emit);
 }
 
 }  // namespace detail

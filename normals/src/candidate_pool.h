@@ -75,7 +75,16 @@ class CandidatePool {
   // Candidates below this cannot become maximisers any more (with or without the
   // constraint).
   double threshold() const { return std::max(best_c_, floor_) - tol_.normality_tie; }
-  double unconstrained_threshold() const { return std::max(best_u_, floor_) - tol_.normality_tie; }
+  // Infinite once the unconstrained optimum is settled.
+  double unconstrained_threshold() const {
+    return unconstrained_settled_ ? std::numeric_limits<double>::infinity()
+                                  : std::max(best_u_, floor_) - tol_.normality_tie;
+  }
+  // Declares the unconstrained optimum reached: a bound proved that no direction beats
+  // best_unconstrained() by more than the tie. From then on candidates and cells that
+  // fail the visibility constraint count for nothing (they could only add unconstrained
+  // maximisers, which decide no status once the constraint limits the optimum).
+  void settle_unconstrained() { unconstrained_settled_ = true; }
   // Declares that the fluid, feasible direction n reaches D = d (the cap antipode, a warm
   // start's rebuilt candidate): the optimum does too, so candidates more than the tie
   // below d are dropped as they come, without n entering the maximisers or the
@@ -123,6 +132,7 @@ class CandidatePool {
   const bool constrained_;
   const double v_min_;
   bool constrained_pass_ = false;
+  bool unconstrained_settled_ = false;
   double best_c_ = -std::numeric_limits<double>::infinity();
   double best_u_ = -std::numeric_limits<double>::infinity();
   double floor_ = -std::numeric_limits<double>::infinity();

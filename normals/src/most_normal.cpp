@@ -10,6 +10,7 @@
 
 #include "blayer/normals/most_visible.h"
 #include "blayer/normals/weighted_normal.h"
+#include "antipodal_plateau.h"
 #include "candidate_families.h"
 #include "candidate_pool.h"
 #include "fan_sites.h"
@@ -231,6 +232,12 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
       radius = detail::link_vertex_lens_radius(g.dirs, -cap.normal, thr, kMaxLensRadius);
   }
   const int n_sites = static_cast<int>(sites.points.size() + sites.arcs.size());
+  // An antipodal pair of link vertices bounds D by 90 degrees; where its plateau reaches
+  // that, the maximisers lie along it (antipodal_plateau.h).
+  if (radius <= 0.0 && n_sites > kMaxEnumeratedSites && detail::antipodal_plateau_settles(pool)) {
+    *n_cells = 0;
+    return pool->unconstrained_maxima_distinct() || pool->constrained_maxima_distinct();
+  }
   bool subdivided = true;
   if (radius > 0.0) {
     subdivision().unconstrained_candidates_near(-cap.normal, radius);

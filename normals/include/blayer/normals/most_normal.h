@@ -45,6 +45,11 @@
 //      that every maximiser that is a critical point is built).
 //   d. Plateau peaks from the lower envelope of V along the circle; the constraint
 //      circles searched leaf by leaf.
+//   e. Before c, an antipodal pair of link vertices bounds D by 90 degrees; where its
+//      plateau (an arc of the circle between them) reaches that, the maximisers lie
+//      along it and its V peaks answer; where it fails the visibility constraint, it
+//      settles the unconstrained optimum and c drops the cells that fail the constraint
+//      all over (antipodal_plateau.h).
 // The enumeration also offers candidates built from sites that are not nearest to them
 // (not critical points of D); within the tie of a near-plateau they could decide the
 // tie-break or a non-unique status there, and the default solver never builds them

@@ -1,0 +1,87 @@
+#include "antipodal_plateau.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "candidate_families.h"
+#include "sphere_solvers.h"
+
+namespace blayer {
+namespace detail {
+
+namespace {
+
+// Link vertices this close to antipodal (|u_a + u_b|) form a pair: exactly antipodal
+// data carries ~1e-16 of rounding, and the bound then exceeds pi/2 by at most 5e-13 rad,
+// three orders inside normality_tie.
+constexpr double kAntipodal = 1e-12;
+
+// A link vertex whose projection on C's plane is shorter than this lies on the axis: it
+// is at pi/2 from every direction of C to that, so it leaves no half-circle condition
+// (the candidates are evaluated exactly whatever is left out).
+constexpr double kOnAxis = 1e-12;
+
+// A widest gap short of pi by at most this still holds the single direction opposite it:
+// the rounding of the projections' angles.
+constexpr double kGapRounding = 1e-12;
+
+}  // namespace
+
+bool antipodal_plateau_settles(CandidatePool* pool) {
+  const FanGeometry& g = pool->geometry();
+  const int k = static_cast<int>(g.dirs.size());
+  int a = -1, b = -1;
+  double closest = kAntipodal * kAntipodal;
+  for (int i = 0; i < k; ++i)
+    for (int j = i + 1; j < k; ++j) {
+      const double gap2 = norm2(g.dirs[i] + g.dirs[j]);
+      if (gap2 <= closest) {
+        closest = gap2;
+        a = i;
+        b = j;
+      }
+    }
+  if (a < 0) return false;
+  const Vec3 h = normalized(g.dirs[a] - g.dirs[b]);
+  Vec3 e1, e2;
+  orthonormal_complement(h, &e1, &e2);
+  // The link vertices projected on C's plane, as angles.
+  thread_local std::vector<double> angles;
+  angles.clear();
+  for (const Vec3& u : g.dirs) {
+    const double x = dot(u, e1), y = dot(u, e2);
+    if (std::hypot(x, y) > kOnAxis) angles.push_back(std::atan2(y, x));
+  }
+  if (angles.empty()) return false;
+  std::sort(angles.begin(), angles.end());
+  // Directions opposite a gap of pi or more between the projections: those of
+  // t in [from + pi/2, from + gap - pi/2] for the gap from angle `from`. Two gaps can reach
+  // pi only when the projections lie on one line; each then holds a single direction.
+  auto offer = [&](const Vec3& n) { pool->consider(n); };
+  const int m = static_cast<int>(angles.size());
+  for (int i = 0; i < m; ++i) {
+    const double from = angles[(i + m - 1) % m];
+    const double gap = i == 0 ? angles[0] + 2.0 * M_PI - angles[m - 1] : angles[i] - angles[i - 1];
+    if (gap < M_PI - kGapRounding) continue;
+    const double mid = from + 0.5 * gap, half = 0.5 * std::max(0.0, gap - M_PI);
+    if (half > 0.0) {
+      thread_local std::vector<int> faces;
+      thread_local std::vector<double> ca, cb, cc;
+      faces.resize(g.n_faces());
+      std::iota(faces.begin(), faces.end(), 0);
+      envelope_peaks_between(g, PlateauCircle{h, 0.0}, faces.data(), g.n_faces(), mid - half, mid + half, &ca, &cb,
+                             &cc, offer);
+    } else {
+      offer(std::cos(mid) * e1 + std::sin(mid) * e2);
+    }
+  }
+  const double bound = 0.5 * M_PI + std::asin(std::min(1.0, 0.5 * std::sqrt(closest)));
+  const double reached = bound - pool->tolerances().normality_tie;
+  if (pool->best_unconstrained() >= reached) pool->settle_unconstrained();
+  return pool->best_constrained() >= reached && !pool->limited();
+}
+
+}  // namespace detail
+}  // namespace blayer
