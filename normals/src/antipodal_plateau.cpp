@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #include "candidate_families.h"
@@ -31,18 +32,26 @@ constexpr double kGapRounding = 1e-12;
 
 bool antipodal_plateau_settles(CandidatePool* pool) {
   const FanGeometry& g = pool->geometry();
-  const int k = static_cast<int>(g.dirs.size());
+  // The most nearly antipodal pair: by the first coordinate, sorted, each vertex meets
+  // only the few whose coordinate is nearly its opposite (O(k log k) instead of all pairs).
+  thread_local std::vector<std::pair<double, int>> by_x;
+  by_x.clear();
+  for (int i = 0; i < static_cast<int>(g.dirs.size()); ++i) by_x.push_back({g.dirs[i][0], i});
+  std::sort(by_x.begin(), by_x.end());
   int a = -1, b = -1;
   double closest = kAntipodal * kAntipodal;
-  for (int i = 0; i < k; ++i)
-    for (int j = i + 1; j < k; ++j) {
-      const double gap2 = norm2(g.dirs[i] + g.dirs[j]);
+  for (const auto& [x, i] : by_x) {
+    auto j = std::lower_bound(by_x.begin(), by_x.end(), std::pair<double, int>{-x - kAntipodal, -1});
+    for (; j != by_x.end() && j->first <= -x + kAntipodal; ++j) {
+      if (j->second <= i) continue;  // each pair once, and never a vertex with itself
+      const double gap2 = norm2(g.dirs[i] + g.dirs[j->second]);
       if (gap2 <= closest) {
         closest = gap2;
         a = i;
-        b = j;
+        b = j->second;
       }
     }
+  }
   if (a < 0) return false;
   const Vec3 h = normalized(g.dirs[a] - g.dirs[b]);
   Vec3 e1, e2;
