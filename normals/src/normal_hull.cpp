@@ -1,10 +1,13 @@
 #include "normal_hull.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
+#include <CGAL/Convex_hull_traits_3.h>
 #include <CGAL/convex_hull_3.h>
 
+#include <array>
+#include <cstddef>
 #include <map>
+#include <vector>
 
 namespace blayer {
 namespace detail {
@@ -43,21 +46,19 @@ bool normal_hull_facets(const Vec3* f, int k, std::vector<std::array<int, 3>>* f
     index.emplace(points.back(), i);
   }
   if (!spans_volume(points)) return false;
-  CGAL::Surface_mesh<Point> hull;
-  CGAL::convex_hull_3(points.begin(), points.end(), hull);
-  for (const auto face : hull.faces()) {
-    std::array<int, 3> t{};
-    int n = 0;
-    for (const auto v : CGAL::vertices_around_face(hull.halfedge(face), hull)) {
-      if (n < 3) t[n] = index.at(hull.point(v));
-      ++n;
-    }
-    if (n != 3) {  // convex_hull_3 triangulates its facets: not expected
-      facets->clear();
-      return false;
-    }
-    facets->push_back(t);
-  }
+  // The hull as an indexed triangle set (its own vertex list, copies of input points),
+  // with the convex hull traits' exact plane predicates.
+  using Traits = CGAL::Convex_hull_traits_3<Kernel, CGAL::Default, CGAL::Tag_true>;
+  using Points = std::vector<Point>;
+  using Faces = std::vector<std::array<std::size_t, 3>>;
+  thread_local Points hull_points;
+  thread_local Faces hull_faces;
+  hull_points.clear();
+  hull_faces.clear();
+  CGAL::convex_hull_3<Points::iterator, Point, Points, Faces, Traits>(points.begin(), points.end(), hull_points,
+                                                                      hull_faces, Traits());
+  for (const auto& face : hull_faces)
+    facets->push_back({index.at(hull_points[face[0]]), index.at(hull_points[face[1]]), index.at(hull_points[face[2]])});
   return !facets->empty();
 }
 
