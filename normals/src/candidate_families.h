@@ -260,6 +260,18 @@ void plateau_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* f
   }
 }
 
+// The parametrisation n(t) = c0 h + s (cos t e1 + sin t e2) of a plateau circle, e1 and
+// e2 from orthonormal_complement(h); false when the circle is a point (s = 0).
+struct CircleFrame {
+  Vec3 e1, e2;
+  double s;
+};
+inline bool circle_frame(const PlateauCircle& circ, CircleFrame* f) {
+  orthonormal_complement(circ.h, &f->e1, &f->e2);
+  f->s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
+  return f->s > 0.0;
+}
+
 // The local maxima of V = min over `faces` of n.f along a plateau circle between the
 // parameters t0 <= t1: on n(t) = c0 h + s (cos t e1 + sin t e2), e1 and e2 from
 // orthonormal_complement(h), each term is a_i + b_i cos t + c_i sin t, and V, their
@@ -270,11 +282,10 @@ template <class Emit>
 void envelope_peaks_between(const FanGeometry& g, const PlateauCircle& circ, const int* faces, int n_faces,
                             double t0, double t1, std::vector<double>* ca, std::vector<double>* cb,
                             std::vector<double>* cc, Emit&& emit) {
-  if (n_faces == 0) return;
-  Vec3 e1, e2;
-  orthonormal_complement(circ.h, &e1, &e2);
-  const double s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
-  if (!(s > 0.0)) return;
+  CircleFrame frame;
+  if (n_faces == 0 || !circle_frame(circ, &frame)) return;
+  const Vec3 &e1 = frame.e1, &e2 = frame.e2;
+  const double s = frame.s;
   circle_terms(g, circ, faces, n_faces, e1, e2, s, ca, cb, cc);
   const double* a = ca->data();
   const double* b = cb->data();
@@ -332,14 +343,11 @@ template <class Emit>
 void plateau_envelope_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* faces, int n_faces,
                             const Vec3& centre, double cos_radius, std::vector<double>* ca, std::vector<double>* cb,
                             std::vector<double>* cc, Emit&& emit) {
-  if (n_faces == 0) return;
-  Vec3 e1, e2;
-  orthonormal_complement(circ.h, &e1, &e2);
-  const double s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
-  if (!(s > 0.0)) return;
+  CircleFrame frame;
+  if (n_faces == 0 || !circle_frame(circ, &frame)) return;
   // Window: n(t).centre >= cos_radius, i.e. r cos(t - tc) >= mu.
-  const double hc = dot(circ.h, centre), xc = dot(e1, centre), yc = dot(e2, centre);
-  const double r = s * std::hypot(xc, yc);
+  const double hc = dot(circ.h, centre), xc = dot(frame.e1, centre), yc = dot(frame.e2, centre);
+  const double r = frame.s * std::hypot(xc, yc);
   const double mu = cos_radius - circ.c0 * hc;
   double t0, t1;
   if (!(r > 0.0) || mu <= -r) {
