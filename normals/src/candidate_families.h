@@ -164,21 +164,33 @@ void triple_candidates(const FanSites& s, const SiteSubset& sub, const Screen& s
 
 // Candidates on the constraint circles {n.f_i = v_min} of the faces `faces` (fan arc
 // indices): with each other, with every bisector of the subset, and the single-site
-// extrema along each circle (towards and away from each site's axis).
-template <class Emit>
+// extrema along each circle (towards and away from each site's axis). The intersections
+// with a great circle {n.h = 0} (of two faces' circles, or a bisector) are built only
+// where near(h) says that circle can reach the caller's region.
+template <class Emit, class Near>
 void constraint_candidates(const FanGeometry& g, const FanSites& s, const SiteSubset& sub, const int* faces,
-                           int n_faces, double v_min, Emit&& emit) {
+                           int n_faces, double v_min, Emit&& emit, Near&& near) {
   const int np = sub.n_points, na = sub.n_arcs;
   auto pw = [&](int a) -> const Vec3& { return s.points[sub.points[a]].w; };
   auto ag = [&](int a) -> const Vec3& { return s.arcs[sub.arcs[a]].g; };
   const double c0 = v_min, sn = std::sqrt(std::max(0.0, 1.0 - c0 * c0));
   for (int ii = 0; ii < n_faces; ++ii) {
     const Vec3& fi = g.face_normals[faces[ii]];
-    for (int jj = ii + 1; jj < n_faces; ++jj) plane_plane_sphere(fi, c0, g.face_normals[faces[jj]], c0, emit);
+    // Two faces' circles meet on the great circle {n.(f_i - f_j) = 0}.
+    for (int jj = ii + 1; jj < n_faces; ++jj) {
+      const Vec3& fj = g.face_normals[faces[jj]];
+      if (near(fi - fj)) plane_plane_sphere(fi, c0, fj, c0, emit);
+    }
     for (int a = 0; a < np; ++a)
-      for (int b = a + 1; b < np; ++b) plane_plane_sphere(fi, c0, pw(a) - pw(b), 0.0, emit);
+      for (int b = a + 1; b < np; ++b) {
+        const Vec3 h = pw(a) - pw(b);
+        if (near(h)) plane_plane_sphere(fi, c0, h, 0.0, emit);
+      }
     for (int a = 0; a < na; ++a)
-      for (int b = a + 1; b < na; ++b) plane_plane_sphere(fi, c0, ag(a) - ag(b), 0.0, emit);
+      for (int b = a + 1; b < na; ++b) {
+        const Vec3 h = ag(a) - ag(b);
+        if (near(h)) plane_plane_sphere(fi, c0, h, 0.0, emit);
+      }
     for (int a = 0; a < np; ++a)
       for (int b = 0; b < na; ++b) circle_cone(fi, c0, pw(a), ag(b), emit);
     auto along = [&](const Vec3& axis) {
@@ -190,6 +202,12 @@ void constraint_candidates(const FanGeometry& g, const FanSites& s, const SiteSu
     for (int a = 0; a < np; ++a) along(pw(a));
     for (int a = 0; a < na; ++a) along(ag(a));
   }
+}
+
+template <class Emit>
+void constraint_candidates(const FanGeometry& g, const FanSites& s, const SiteSubset& sub, const int* faces,
+                           int n_faces, double v_min, Emit&& emit) {
+  constraint_candidates(g, s, sub, faces, n_faces, v_min, emit, [](const Vec3&) { return true; });
 }
 
 // A circle {n.h = c0} (h unit) along which two concentric sites keep D constant.

@@ -471,7 +471,11 @@ void SiteSubdivision::constraint_circles() {
     drop_circles_below_another(leaf, lowest, &crossing);
     if (crossing.empty()) continue;
     auto emit = [&](const Vec3& n) { offer(leaf, n); };
-    constraint_candidates(g_, s_, subset(leaf), crossing.data(), static_cast<int>(crossing.size()), v_min, emit);
+    // Intersections on great circles that pass outside the leaf would not be offered:
+    // they are not built (a valence-40 sliver fan's 16,000 face pairs in 51 leaves).
+    auto near = [&](const Vec3& h) { return great_circle_meets_cap(leaf.c, leaf.cos_cap, h); };
+    constraint_candidates(g_, s_, subset(leaf), crossing.data(), static_cast<int>(crossing.size()), v_min, emit,
+                          near);
   }
 }
 

@@ -37,6 +37,8 @@
 // blayer_normals.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -62,6 +64,21 @@ inline double cap_min_dot(const Vec3& c, double cos_rho, double sin_rho, const V
 inline double pair_cap_cosine(const Vec3& c, double cos_rho, double sin_rho, const Vec3& u_a, const Vec3& u_b) {
   const Vec3 q = 0.5 * (u_a + u_b);
   return dot(c, q) >= 0.0 ? cap_min_dot(c, cos_rho, sin_rho, q) : -2.0;
+}
+
+// Whether the great circle {n.h = 0} can hold a direction that a leaf with centre c
+// admits (n.c >= cos_cap |n|, as SiteSubdivision::offer tests): such a direction is
+// within the angle whose cosine is cos_cap of c, so |c.h| <= |h| times its sine. offer's
+// comparison is rounded by about 1e-15 (its dot product and |n| near 1), which widens the
+// admitted angle by much more than 1e-15 on small leaves (cos_cap is then within 1e-15 of
+// 1): the sine is taken for the cosine cos_cap - 2e-15, 1 - (cos_cap - 2e-15)^2 <=
+// 1 - cos_cap^2 + 4e-15, which also covers the rounding of 1 - cos_cap^2. 1e-12 covers
+// that of n.h in the candidates built on the circle and of this test. Caps of a
+// hemisphere or more meet every great circle.
+inline bool great_circle_meets_cap(const Vec3& c, double cos_cap, const Vec3& h) {
+  if (!(cos_cap > 0.0)) return true;
+  const double sin_reach = std::sqrt(std::max(0.0, 1.0 - cos_cap * cos_cap) + 4e-15) + 1e-12;
+  return std::fabs(dot(c, h)) <= sin_reach * norm(h);
 }
 
 struct SubdivisionStats {

@@ -1,8 +1,9 @@
 // The parts of the default most-normal solver on their own (white-box, normals/src):
 // the candidate pool evaluates D and the fluid side as the references do,
 // the subdivision over the whole sphere finds the enumeration's optimum on fans of every
-// size, the link-vertex lens holds every sampled direction of its superlevel set, and the
-// lower envelope of V along a plateau circle peaks as high as all pairwise crossings do.
+// size, the link-vertex lens holds every sampled direction of its superlevel set, the
+// lower envelope of V along a plateau circle peaks as high as all pairwise crossings do,
+// and the constraint pass's great-circle screen keeps every circle through a leaf.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -202,6 +203,46 @@ TEST(SiteSubdivision, PairBoundHoldsOnEverySampledDirectionOfTheCap) {
     }
   }
   EXPECT_GT(bounded, 1500);
+}
+
+// The constraint pass builds the points of a great circle {n.h = 0} in a leaf only when
+// great_circle_meets_cap says the circle can hold a direction the leaf admits
+// (n.c >= cos_cap). For random leaves, of radii down to 1e-9 where the cosine margin
+// dominates, every great circle that holds an admitted direction (its point nearest c,
+// and points computed as the candidates are, by plane_plane_sphere) is kept; circles
+// well outside are dropped.
+TEST(SiteSubdivision, GreatCircleScreenKeepsEveryCircleThroughTheLeaf) {
+  std::mt19937 rng(41);
+  std::normal_distribution<double> nd;
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  auto random_unit = [&]() { return normalized(Vec3{nd(rng), nd(rng), nd(rng)}); };
+  int held = 0, dropped = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const Vec3 c = random_unit();
+    const double rho = std::pow(10.0, -9.0 + 9.2 * u01(rng));
+    // The leaf's admitted cosine, as SiteSubdivision::record_leaf sets it.
+    const double cos_cap = std::cos(rho + 1e-12) - 1e-15;
+    // A circle whose nearest point to c is at a chosen angle, around the cap's edge.
+    const double admitted = std::acos(std::min(1.0, cos_cap));
+    const double gap = admitted * (0.5 + u01(rng)) + (t % 3 == 0 ? 1e-8 * u01(rng) : 0.0);
+    const Vec3 t1 = normalized(cross(c, random_unit()));
+    const Vec3 nearest = std::cos(gap) * c + std::sin(gap) * t1;
+    const Vec3 h = (0.01 + u01(rng)) * normalized(cross(nearest, cross(c, t1)));
+    // The points a candidate formula would give on it: through a random circle n.f = v.
+    std::vector<Vec3> points = {nearest};
+    const Vec3 f = random_unit();
+    detail::plane_plane_sphere(h, 0.0, f, dot(f, nearest), [&](const Vec3& n) { points.push_back(n); });
+    bool admits = false;
+    for (const Vec3& n : points) admits |= dot(n, c) >= cos_cap * norm(n);
+    const bool kept = detail::great_circle_meets_cap(c, cos_cap, h);
+    if (admits) {
+      ++held;
+      EXPECT_TRUE(kept) << "leaf " << t << " radius " << rho;
+    }
+    if (!kept) ++dropped;
+  }
+  EXPECT_GT(held, 5000);
+  EXPECT_GT(dropped, 5000);
 }
 
 // The generator screen keeps an arc only on its fluid side: a direction at its pole
