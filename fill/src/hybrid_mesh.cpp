@@ -66,7 +66,7 @@ std::vector<Triangle> other_faces_in_plane(const VolumeMesh& mesh, const Symmetr
     const CellFaceTable& table = cell_face_table(mesh.cell_types[c]);
     for (int f = 0; f < table.n_faces; ++f) {
       const int k = table.n_corners[f];
-      int v[4];
+      int v[4] = {0, 0, 0, 0};  // a face has 3 or 4 corners: what the compiler cannot see
       bool in_plane = true;
       for (int j = 0; j < k; ++j) {
         v[j] = static_cast<int>(n[table.corners[f][j]]);

@@ -278,7 +278,7 @@ class SupportSearch {
  public:
   explicit SupportSearch(const std::vector<Vec3>& u) : u_(u) {}
   void offer(std::initializer_list<int> s) {
-    const Vec3* pts[3];
+    const Vec3* pts[3] = {nullptr, nullptr, nullptr};  // s holds 1 to 3 indices
     int n = 0;
     for (int i : s) pts[n++] = &u_[i];
     double lambda[3];

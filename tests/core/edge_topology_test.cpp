@@ -71,7 +71,9 @@ TEST(EdgeTopology, FlippedTriangleMakesItsThreeEdgesInconsistent) {
   const EdgeTopology e = build_edge_topology(s);
   EXPECT_EQ(e.n_inconsistent, 3);
   for (const SurfaceEdge& edge : e.edges)
-    if (edge.kind == EdgeKind::kInconsistent) EXPECT_TRUE(edge.triangle[0] == 5 || edge.triangle[1] == 5);
+    if (edge.kind == EdgeKind::kInconsistent) {
+      EXPECT_TRUE(edge.triangle[0] == 5 || edge.triangle[1] == 5);
+    }
   expect_counts_match_brute_force(s);
 }
 

@@ -126,7 +126,9 @@ TEST(SurfaceAreaSplit, NonFiniteCentresGoToTheFirstBin) {
   ASSERT_GT(l, 0);
   ASSERT_LT(l, 8);
   for (int i = 0; i < 8; ++i)
-    if (order[i] < 2) EXPECT_LT(i, l) << "NaN centre " << order[i] << " right of the split";
+    if (order[i] < 2) {
+      EXPECT_LT(i, l) << "NaN centre " << order[i] << " right of the split";
+    }
 }
 
 }  // namespace

@@ -330,8 +330,12 @@ TEST(FloatBox, BoundsAreTheNearestFloatsOutside) {
     EXPECT_LE(lo, x) << x;
     EXPECT_GE(hi, x) << x;
     // The nearest: the next float inwards is on the other side of x (or x is that float).
-    if (lo != x) EXPECT_GT(std::nextafter(lo, inf), x) << x;
-    if (hi != x) EXPECT_LT(std::nextafter(hi, -inf), x) << x;
+    if (lo != x) {
+      EXPECT_GT(std::nextafter(lo, inf), x) << x;
+    }
+    if (hi != x) {
+      EXPECT_LT(std::nextafter(hi, -inf), x) << x;
+    }
   }
   EXPECT_EQ(FloatBox::round_down(0.75), 0.75f);  // floats stay themselves
   EXPECT_EQ(FloatBox::round_up(0.75), 0.75f);

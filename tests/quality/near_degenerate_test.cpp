@@ -200,8 +200,9 @@ TEST(NearDegenerateCells, DistortedCellsOfEveryTypeGetTheVerdictOfTheirTetSigns)
     // twist, and flat cells need exact coincidences).
     EXPECT_GT(by_class[static_cast<int>(Validity::kValid)], 1000) << static_cast<int>(type);
     EXPECT_GT(by_class[static_cast<int>(Validity::kInverted)], 1000) << static_cast<int>(type);
-    if (type == CellType::kWedge || type == CellType::kHex)
+    if (type == CellType::kWedge || type == CellType::kHex) {
       EXPECT_GT(by_class[static_cast<int>(Validity::kTwisted)], 100) << static_cast<int>(type);
+    }
   }
 }
 
