@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "candidate_families.h"
-#include "sphere_solvers.h"
 
 namespace blayer {
 namespace detail {
@@ -53,9 +52,11 @@ bool antipodal_plateau_settles(CandidatePool* pool) {
     }
   }
   if (a < 0) return false;
-  const Vec3 h = normalized(g.dirs[a] - g.dirs[b]);
-  Vec3 e1, e2;
-  orthonormal_complement(h, &e1, &e2);
+  // C and its parameter t, as the envelope sweep takes them: n(t) = cos t e1 + sin t e2.
+  const PlateauCircle circle{normalized(g.dirs[a] - g.dirs[b]), 0.0};
+  CircleFrame frame;
+  if (!circle_frame(circle, &frame)) return false;
+  const Vec3 &e1 = frame.e1, &e2 = frame.e2;
   // The link vertices projected on C's plane, as angles.
   thread_local std::vector<double> angles;
   angles.clear();
@@ -69,6 +70,10 @@ bool antipodal_plateau_settles(CandidatePool* pool) {
   // t in [from + pi/2, from + gap - pi/2] for the gap from angle `from`. Two gaps can reach
   // pi only when the projections lie on one line; each then holds a single direction.
   auto offer = [&](const Vec3& n) { pool->consider(n); };
+  thread_local std::vector<int> faces;  // every face bounds V
+  thread_local std::vector<double> ca, cb, cc;
+  faces.resize(g.n_faces());
+  std::iota(faces.begin(), faces.end(), 0);
   const int m = static_cast<int>(angles.size());
   for (int i = 0; i < m; ++i) {
     const double from = angles[(i + m - 1) % m];
@@ -76,12 +81,7 @@ bool antipodal_plateau_settles(CandidatePool* pool) {
     if (gap < M_PI - kGapRounding) continue;
     const double mid = from + 0.5 * gap, half = 0.5 * std::max(0.0, gap - M_PI);
     if (half > 0.0) {
-      thread_local std::vector<int> faces;
-      thread_local std::vector<double> ca, cb, cc;
-      faces.resize(g.n_faces());
-      std::iota(faces.begin(), faces.end(), 0);
-      envelope_peaks_between(g, PlateauCircle{h, 0.0}, faces.data(), g.n_faces(), mid - half, mid + half, &ca, &cb,
-                             &cc, offer);
+      envelope_peaks_between(g, circle, faces.data(), g.n_faces(), mid - half, mid + half, &ca, &cb, &cc, offer);
     } else {
       offer(std::cos(mid) * e1 + std::sin(mid) * e2);
     }

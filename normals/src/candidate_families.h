@@ -253,14 +253,27 @@ inline void circle_terms(const FanGeometry& g, const PlateauCircle& circ, const 
   }
 }
 
+// The parametrisation n(t) = c0 h + s (cos t e1 + sin t e2) of a plateau circle, e1 and
+// e2 from orthonormal_complement(h); false when the circle is a point (s = 0).
+struct CircleFrame {
+  Vec3 e1, e2;
+  double s;
+};
+inline bool circle_frame(const PlateauCircle& circ, CircleFrame* f) {
+  orthonormal_complement(circ.h, &f->e1, &f->e2);
+  f->s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
+  return f->s > 0.0;
+}
+
 // The points of a plateau circle where V = min over `faces` of n.f can peak: a single
 // term's peak or the equality of two terms. ca, cb, cc are scratch of n_faces entries.
 template <class Emit>
 void plateau_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* faces, int n_faces,
                    std::vector<double>* ca, std::vector<double>* cb, std::vector<double>* cc, Emit&& emit) {
-  Vec3 e1, e2;
-  orthonormal_complement(circ.h, &e1, &e2);
-  const double s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
+  CircleFrame frame;
+  circle_frame(circ, &frame);  // a point circle (s = 0) gives its one point
+  const Vec3 &e1 = frame.e1, &e2 = frame.e2;
+  const double s = frame.s;
   // V along the circle is min_i (a_i + b_i cos t + c_i sin t); it peaks at a single
   // term's peak or where two terms are equal.
   circle_terms(g, circ, faces, n_faces, e1, e2, s, ca, cb, cc);
@@ -276,18 +289,6 @@ void plateau_peaks(const FanGeometry& g, const PlateauCircle& circ, const int* f
       at(phi - da);
     }
   }
-}
-
-// The parametrisation n(t) = c0 h + s (cos t e1 + sin t e2) of a plateau circle, e1 and
-// e2 from orthonormal_complement(h); false when the circle is a point (s = 0).
-struct CircleFrame {
-  Vec3 e1, e2;
-  double s;
-};
-inline bool circle_frame(const PlateauCircle& circ, CircleFrame* f) {
-  orthonormal_complement(circ.h, &f->e1, &f->e2);
-  f->s = std::sqrt(std::max(0.0, 1.0 - circ.c0 * circ.c0));
-  return f->s > 0.0;
 }
 
 // The local maxima of V = min over `faces` of n.f along a plateau circle between the
