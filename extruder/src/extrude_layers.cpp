@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
@@ -70,8 +71,8 @@ std::vector<char> growing(const ColumnState& c) {
 // triangles, takes the wall's own normal at its point.
 StepDirections wall_directions(const TriSurface& wall, const WallTopology& wall_topo, const ColumnLayout& layout,
                                const WallTopology& topo, const WallPlanes& planes, const ExtrusionParams& params,
-                               WallNormalMemo* memo) {
-  if (!layout.has_fans()) return compute_step_directions(layout.front, topo, topo.used, params, nullptr, memo);
+                               WallNormalMemo* memo, FrontWarmStarts* warm) {
+  if (!layout.has_fans()) return compute_step_directions(layout.front, topo, topo.used, params, nullptr, memo, warm);
   PrescribedDirections fan{layout.direction, std::vector<double>(layout.n_columns(), 0.0)};
   for (const LayerElement& e : layout.elements) {
     if (e.kind != ElementKind::kStripEnd) continue;
@@ -82,7 +83,7 @@ StepDirections wall_directions(const TriSurface& wall, const WallTopology& wall_
   }
   for (int c = 0; c < layout.n_columns(); ++c)
     if (norm2(fan.n[c]) > 0.0) fan.visibility[c] = planes.visibility(c, fan.n[c]);
-  return compute_step_directions(layout.front, topo, topo.used, params, &fan, memo);
+  return compute_step_directions(layout.front, topo, topo.used, params, &fan, memo, warm);
 }
 
 // Fan points none of whose columns grew a layer because a cell, a collision or the
@@ -136,7 +137,12 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
   Stopwatch phase;
   const WallPlanes planes(wall, layout, topo);
   const TriSurface& start = layout.front;
-  StepDirections dirs = wall_directions(wall, wall_topo, layout, topo, planes, params, normal_memo);
+  // Recomputed directions: every front's normals start from the front below's,
+  // the wall's included (this attempt's columns only: a layout's columns are its own).
+  std::optional<FrontWarmStarts> warm;
+  if (params.column_directions == ColumnDirections::kRecomputed) warm.emplace();
+  FrontWarmStarts* const warm_starts = warm ? &*warm : nullptr;
+  StepDirections dirs = wall_directions(wall, wall_topo, layout, topo, planes, params, normal_memo, warm_starts);
   ColumnPlan plan = plan_column_heights(
       wall, wall_topo, topo, rep.growth, params, dirs,
       wall_proximity_rays(wall.triangles, wall.points, **wall_tree, &start.triangles, &layout.wall_point, topo.plane,
@@ -167,8 +173,12 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
     if (k > 0) {
       front.points = columns.top;
       int n_turned = 0;
-      dirs = update_step_directions(front, topo, active, params, dirs, &n_turned);
+      dirs = update_step_directions(front, topo, active, params, dirs, &n_turned, warm_starts);
       rep.n_turned_directions += n_turned;
+      if (warm) {
+        rep.n_warm_starts = warm->counts.warm;
+        rep.n_warm_hits = warm->counts.hits;
+      }
     }
     for (int v = 0; v < columns.size(); ++v)
       if (active[v] && !dirs.ok[v]) {

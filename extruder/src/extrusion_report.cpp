@@ -205,6 +205,10 @@ std::string format_extrusion_report(const ExtrusionReport& r) {
        static_cast<long long>(r.n_wedges), static_cast<long long>(r.n_pyramids), static_cast<long long>(r.n_tets),
        r.n_hexes > 0 ? (", " + std::to_string(r.n_hexes) + " hexes").c_str() : "",
        static_cast<long long>(r.n_points));
+  if (r.n_warm_starts > 0)
+    line(&s, "warm starts         %ld of the fronts' normals started from the front below; certificate held for "
+         "%ld (%.1f %%)",
+         r.n_warm_starts, r.n_warm_hits, 100.0 * static_cast<double>(r.n_warm_hits) / static_cast<double>(r.n_warm_starts));
   line(&s, "min visibility      %.4f", r.min_visibility);
   line(&s, "time [s]            setup %.3f  normals %.3f  proximity %.3f  checks %.3f  assembly %.3f  report %.3f  "
        "total %.3f",
@@ -255,6 +259,8 @@ nlohmann::json extrusion_report_to_json(const ExtrusionReport& r) {
                   {"stopped", counts_by_reason(r.stopped_columns)},
                   {"limited", counts_by_reason(r.limited_columns)},
                   {"turned_directions", r.n_turned_directions},
+                  {"warm_starts", r.n_warm_starts},
+                  {"warm_start_hits", r.n_warm_hits},
                   {"per_layer", r.columns_per_layer}};
   j["verdict"] = {{"outcome", r.complete() ? "complete" : "limited"},
                   {"thin_columns", r.thin.total_columns},

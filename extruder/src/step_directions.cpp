@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 
 #include "blayer/normals/fan_geometry.h"
 #include "blayer/normals/vertex_normal.h"
@@ -52,21 +53,34 @@ void smoothing_pass(const WallTopology& topo, const std::vector<double>& raw_vis
   d->visibility.swap(next_vis);
 }
 
+// A column's warm start on a front, and whether its certificate held.
+struct ColumnWarmStart {
+  MostNormalWarmStart* state = nullptr;  // null: solve cold
+  bool hit = false;
+};
+
+VertexNormal solve_fan(const FanGeometry& g, NormalMethod method, ColumnWarmStart* warm) {
+  if (!warm || !warm->state) return compute_vertex_normal(g, method);
+  return compute_vertex_normal(g, method, default_tolerances(), warm->state, &warm->hit);
+}
+
 // The normal of v's own fan on the front, ignoring a symmetry plane (the per-vertex
 // kernel of compute_point_normals).
-VertexNormal plain_fan_normal(const TriSurface& front, const WallTopology& topo, int v, NormalMethod method) {
+VertexNormal plain_fan_normal(const TriSurface& front, const WallTopology& topo, int v, NormalMethod method,
+                              ColumnWarmStart* warm = nullptr) {
   const VertexFan& fan = topo.fans.fans[v];
   std::vector<Vec3> ring;
   ring.reserve(fan.ring.size());
   for (int r : fan.ring) ring.push_back(front.points[r]);
   FanGeometry g;
   build_fan_geometry(front.points[v], ring, fan.closed, default_tolerances(), &g);
-  return compute_vertex_normal(g, method);
+  return solve_fan(g, method, warm);
 }
 
 // The point normal of the front at v alone.
-VertexNormal front_normal(const TriSurface& front, const WallTopology& topo, int v, NormalMethod method) {
-  if (!topo.on_plane[v]) return plain_fan_normal(front, topo, v, method);
+VertexNormal front_normal(const TriSurface& front, const WallTopology& topo, int v, NormalMethod method,
+                          ColumnWarmStart* warm = nullptr) {
+  if (!topo.on_plane[v]) return plain_fan_normal(front, topo, v, method, warm);
   const VertexFan& fan = topo.fans.fans[v];
   std::vector<Vec3> ring;
   ring.reserve(2 * fan.ring.size());
@@ -79,7 +93,7 @@ VertexNormal front_normal(const TriSurface& front, const WallTopology& topo, int
   const SymmetryPlane& plane = *topo.plane;
   for (int j = static_cast<int>(fan.ring.size()) - 2; j >= 1; --j) ring.push_back(plane.mirror(front.points[fan.ring[j]]));
   build_fan_geometry(front.points[v], ring, true, default_tolerances(), &g);
-  VertexNormal n = compute_vertex_normal(g, method);
+  VertexNormal n = solve_fan(g, method, warm);
   n.normal = normalized(plane.in_plane(n.normal));
   return n;
 }
@@ -98,10 +112,39 @@ const WallNormalMemo::Entry* memo_entry(const WallNormalMemo& memo, const TriSur
   return &e;
 }
 
+// The warm starts of one front's solves: each column's state, and per column whether
+// it came valid and whether its certificate held (summed into the run's counts by
+// finish(), after the parallel pass, so the counts do not depend on the threads).
+struct WarmTally {
+  FrontWarmStarts* starts;
+  std::vector<char> valid, hit;
+
+  WarmTally(FrontWarmStarts* s, int n_columns) : starts(s), valid(n_columns, 0), hit(n_columns, 0) {
+    if (starts->by_column.size() < static_cast<std::size_t>(n_columns)) starts->by_column.resize(n_columns);
+  }
+  ColumnWarmStart enter(int v) {
+    valid[v] = starts->by_column[v].valid;
+    return ColumnWarmStart{&starts->by_column[v], false};
+  }
+  // Only a visibility-constrained optimum is carried to the next front (see
+  // FrontWarmStarts in step_directions.h).
+  void leave(int v, const ColumnWarmStart& w, const VertexNormal& n) {
+    hit[v] = w.hit;
+    if (n.status != NormalStatus::kVisibilityConstrained) starts->by_column[v].valid = false;
+  }
+  void finish() {
+    for (std::size_t v = 0; v < valid.size(); ++v) {
+      starts->counts.warm += valid[v];
+      starts->counts.hits += hit[v];
+    }
+  }
+};
+
 // plain_fan_normal for the points with `which` set (the others keep the status of an
 // empty fan), through the memo when one is given.
 std::vector<VertexNormal> plain_fan_normals(const TriSurface& front, const WallTopology& topo,
-                                            const std::vector<char>& which, NormalMethod method, WallNormalMemo* memo) {
+                                            const std::vector<char>& which, NormalMethod method, WallNormalMemo* memo,
+                                            WarmTally* warm) {
   const int nv = static_cast<int>(front.points.size());
   std::vector<VertexNormal> out(nv);
   for (VertexNormal& n : out) n.status = NormalStatus::kDegenerateFan;
@@ -113,7 +156,12 @@ std::vector<VertexNormal> plain_fan_normals(const TriSurface& front, const WallT
       out[v] = e->normal;
       return;
     }
-    out[v] = plain_fan_normal(front, topo, v, method);
+    // A column on the symmetry plane is warm-started on its mirrored fan only
+    // (compute_step_directions), whose sites its warm start names.
+    const bool warmed = warm && !topo.on_plane[v];
+    ColumnWarmStart w = warmed ? warm->enter(v) : ColumnWarmStart{};
+    out[v] = plain_fan_normal(front, topo, v, method, &w);
+    if (warmed) warm->leave(v, w, out[v]);
     solved[v] = 1;
   });
   if (!memo) return out;
@@ -179,9 +227,10 @@ VertexNormal surface_point_normal(const TriSurface& s, const WallTopology& topo,
 
 StepDirections update_step_directions(const TriSurface& front, const WallTopology& topo,
                                       const std::vector<char>& active, const ExtrusionParams& p,
-                                      const StepDirections& previous, int* n_turned) {
+                                      const StepDirections& previous, int* n_turned, FrontWarmStarts* warm) {
   *n_turned = 0;
-  if (p.column_directions == ColumnDirections::kRecomputed) return compute_step_directions(front, topo, active, p);
+  if (p.column_directions == ColumnDirections::kRecomputed)
+    return compute_step_directions(front, topo, active, p, nullptr, nullptr, warm);
   const int nv = static_cast<int>(front.points.size());
   StepDirections d;
   d.face_normal = unit_face_normals(front);
@@ -220,8 +269,11 @@ double visibility_of(const StepDirections& d, const WallTopology& topo, int v, c
 
 StepDirections compute_step_directions(const TriSurface& front, const WallTopology& topo,
                                        const std::vector<char>& active, const ExtrusionParams& p,
-                                       const PrescribedDirections* prescribed, WallNormalMemo* memo) {
+                                       const PrescribedDirections* prescribed, WallNormalMemo* memo,
+                                       FrontWarmStarts* warm) {
   const int nv = static_cast<int>(front.points.size());
+  std::optional<WarmTally> tally;
+  if (warm) tally.emplace(warm, nv);
   std::vector<char> fixed;
   // With prescribed directions, the fan points' own fans on the wall are degenerate
   // (their columns coincide): only the other points get the front's normal, and those
@@ -234,7 +286,7 @@ StepDirections compute_step_directions(const TriSurface& front, const WallTopolo
     which[v] = prescribed ? !fixed[v] && !topo.on_plane[v] && topo.vertex_triangles.count(v) > 0
                           : v < static_cast<int>(topo.fans.fans.size()) && !topo.fans.fans[v].triangles.empty();
   });
-  const std::vector<VertexNormal> fan_normals = plain_fan_normals(front, topo, which, p.normal_method, memo);
+  const std::vector<VertexNormal> fan_normals = plain_fan_normals(front, topo, which, p.normal_method, memo, tally ? &*tally : nullptr);
   PointNormals pn;
   pn.normal.assign(nv, Vec3{0.0, 0.0, 0.0});
   pn.status.assign(nv, prescribed ? NormalStatus::kNoVisibleDirection : NormalStatus::kDegenerateFan);
@@ -245,10 +297,13 @@ StepDirections compute_step_directions(const TriSurface& front, const WallTopolo
     }
   parallel_vertices(nv, [&](int v) {
     if (!topo.on_plane[v] || !active[v]) return;
-    const VertexNormal n = front_normal(front, topo, v, p.normal_method);
+    ColumnWarmStart w = tally ? tally->enter(v) : ColumnWarmStart{};
+    const VertexNormal n = front_normal(front, topo, v, p.normal_method, &w);
+    if (tally) tally->leave(v, w, n);
     pn.normal[v] = n.normal;
     pn.status[v] = n.status;
   });
+  if (tally) tally->finish();
   StepDirections d;
   d.face_normal = unit_face_normals(front);
   d.n = pn.normal;

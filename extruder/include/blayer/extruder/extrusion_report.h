@@ -80,6 +80,10 @@ struct ExtrusionReport {
   std::array<int, kStopReasonCount> stopped_columns{};  // ended before N, by reason
   std::array<int, kStopReasonCount> limited_columns{};  // compressed or ended, by first limit
   int n_turned_directions = 0;        // column directions turned to stay visible (kKept)
+  // kRecomputed: the fronts' most-normal solves that came with a valid warm start from
+  // the front below, and those whose certificate held (step_directions.h).
+  long n_warm_starts = 0;
+  long n_warm_hits = 0;
   // Half models: columns on the symmetry plane, and the largest distance from it of any
   // of their points (0 for a coordinate plane; rounding otherwise).
   int n_symmetry_columns = 0;
