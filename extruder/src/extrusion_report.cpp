@@ -208,7 +208,8 @@ std::string format_extrusion_report(const ExtrusionReport& r) {
   if (r.n_warm_starts > 0)
     line(&s, "warm starts         %ld of the fronts' normals started from the front below; certificate held for "
          "%ld (%.1f %%)",
-         r.n_warm_starts, r.n_warm_hits, 100.0 * static_cast<double>(r.n_warm_hits) / static_cast<double>(r.n_warm_starts));
+         r.n_warm_starts, r.n_warm_hits,
+         100.0 * static_cast<double>(r.n_warm_hits) / static_cast<double>(r.n_warm_starts));
   line(&s, "min visibility      %.4f", r.min_visibility);
   line(&s, "time [s]            setup %.3f  normals %.3f  proximity %.3f  checks %.3f  assembly %.3f  report %.3f  "
        "total %.3f",

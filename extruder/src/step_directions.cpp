@@ -286,7 +286,8 @@ StepDirections compute_step_directions(const TriSurface& front, const WallTopolo
     which[v] = prescribed ? !fixed[v] && !topo.on_plane[v] && topo.vertex_triangles.count(v) > 0
                           : v < static_cast<int>(topo.fans.fans.size()) && !topo.fans.fans[v].triangles.empty();
   });
-  const std::vector<VertexNormal> fan_normals = plain_fan_normals(front, topo, which, p.normal_method, memo, tally ? &*tally : nullptr);
+  const std::vector<VertexNormal> fan_normals =
+      plain_fan_normals(front, topo, which, p.normal_method, memo, tally ? &*tally : nullptr);
   PointNormals pn;
   pn.normal.assign(nv, Vec3{0.0, 0.0, 0.0});
   pn.status.assign(nv, prescribed ? NormalStatus::kNoVisibleDirection : NormalStatus::kDegenerateFan);
