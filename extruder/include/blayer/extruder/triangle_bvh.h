@@ -139,7 +139,10 @@ class TriangleBvh {
   template <class Visit>
   void for_each_overlapping_pair(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
                                  const TriangleBvh& other, Visit&& visit) const {
-    if (nodes_.empty() || other.nodes_.empty() || !node_wanted[0]) return;
+    // A pair is tested before it is pushed (only wanted, overlapping pairs are ever
+    // popped): most pairs fail, and their push and pop cost more than the test.
+    auto wanted_overlap = [&](int a, int b) { return node_wanted[a] && nodes_[a].box.overlaps(other.nodes_[b].box); };
+    if (nodes_.empty() || other.nodes_.empty() || !wanted_overlap(0, 0)) return;
     auto leaves = [&](const Node& a, const Node& b) {
       for (int i = a.first; i < a.first + a.count; ++i) {
         if (!wanted[items_[i]]) continue;
@@ -150,11 +153,12 @@ class TriangleBvh {
     auto descend = [&](int a, int b, auto&& push) {
       const Node& na = nodes_[a];
       const Node& nb = other.nodes_[b];
-      if (!node_wanted[a] || !na.box.overlaps(nb.box)) return;
       if (na.count > 0 && nb.count > 0) {
         leaves(na, nb);
       } else {
-        split_pair(nodes_, a, other.nodes_, b, push);
+        split_pair(nodes_, a, other.nodes_, b, [&](int x, int y) {
+          if (wanted_overlap(x, y)) push(x, y);
+        });
       }
     };
     traverse_pairs(descend);
@@ -170,26 +174,29 @@ class TriangleBvh {
     auto pair = [&](int i, int j) {
       if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j])) visit(items_[i], items_[j]);
     };
+    // Pairs are tested before they are pushed, as above; a node always overlaps itself.
+    auto keep = [&](int a, int b, auto&& push) {
+      if ((node_wanted[a] || node_wanted[b]) && (a == b || nodes_[a].box.overlaps(nodes_[b].box))) push(a, b);
+    };
     // A pair (a, b) with a == b stands for the pairs inside node a.
     auto descend = [&](int a, int b, auto&& push) {
       const Node& na = nodes_[a];
       const Node& nb = nodes_[b];
-      if ((!node_wanted[a] && !node_wanted[b]) || !na.box.overlaps(nb.box)) return;
       if (a == b) {
         if (na.count > 0) {
           for (int i = na.first; i < na.first + na.count; ++i)
             for (int j = i + 1; j < na.first + na.count; ++j) pair(i, j);
         } else {
           const int l = na.first, r = na.first + na.left_nodes;
-          push(l, l);
-          push(r, r);
-          push(l, r);
+          keep(l, l, push);
+          keep(r, r, push);
+          keep(l, r, push);
         }
       } else if (na.count > 0 && nb.count > 0) {
         for (int i = na.first; i < na.first + na.count; ++i)
           for (int j = nb.first; j < nb.first + nb.count; ++j) pair(i, j);
       } else {
-        split_pair(nodes_, a, nodes_, b, push);
+        split_pair(nodes_, a, nodes_, b, [&](int x, int y) { keep(x, y, push); });
       }
     };
     traverse_pairs(descend);
