@@ -63,7 +63,7 @@ constexpr std::size_t kMemoMinValence = 10;
 // maximiser of equal D.
 // Only a visibility-constrained optimum is carried to the next front. There the bound
 // prunes the constraint leaves, which are most of the solve: on the perforated CAD
-// block the fronts' normals take about 20 % less time. On unconstrained fans the
+// block the fronts' normals take about a sixth less time. On unconstrained fans the
 // cold solve is as fast, and the warm one's choices inside the tie band moved mesh
 // points of the 717 wing by up to 2e-8; carried only where constrained, the meshes of
 // the benchmark surfaces are bitwise those of cold solves (docs/extrusion.md).
