@@ -175,10 +175,6 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
       int n_turned = 0;
       dirs = update_step_directions(front, topo, active, params, dirs, &n_turned, warm_starts);
       rep.n_turned_directions += n_turned;
-      if (warm) {
-        rep.n_warm_starts = warm->counts.warm;
-        rep.n_warm_hits = warm->counts.hits;
-      }
     }
     for (int v = 0; v < columns.size(); ++v)
       if (active[v] && !dirs.ok[v]) {
@@ -229,6 +225,10 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
   rep.columns_per_layer = assembler.columns_per_layer();
   rep.fans.cells = assembler.fan_cells();
   rep.min_visibility = rep.columns_per_layer.empty() ? 0.0 : assembler.min_visibility();
+  if (warm) {
+    rep.n_warm_starts = warm->counts.warm;
+    rep.n_warm_hits = warm->counts.hits;
+  }
   rep.t_assembly += phase.seconds();
 
   phase.restart();
