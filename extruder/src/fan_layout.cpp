@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <set>
+#include <iterator>
+#include <limits>
 #include <utility>
 
 #include "blayer/core/assert.h"
@@ -35,6 +35,26 @@ Vec3 slerp(const Vec3& a, const Vec3& b, double t) {
 struct Ridge {
   int a = 0, b = 0;        // a -> b as the first triangle t0 runs it
   int t0 = -1, t1 = -1;    // the triangles on either side
+};
+
+// Ridge edges by their end points: sorted keys, searched by bisection (every fan
+// triangle of every fan point asks once).
+class RidgeIndex {
+ public:
+  void build(const std::vector<Ridge>& ridges) {
+    keys_.clear();
+    for (int i = 0; i < static_cast<int>(ridges.size()); ++i) keys_.push_back({edge_key(ridges[i].a, ridges[i].b), i});
+    std::sort(keys_.begin(), keys_.end());
+  }
+  // The ridge through a and b, or -1 (the last listed of repeated edges).
+  int find(int a, int b) const {
+    const EdgeKey key = edge_key(a, b);
+    auto it = std::upper_bound(keys_.begin(), keys_.end(), std::make_pair(key, std::numeric_limits<int>::max()));
+    return it != keys_.begin() && std::prev(it)->first == key ? std::prev(it)->second : -1;
+  }
+
+ private:
+  std::vector<std::pair<EdgeKey, int>> keys_;
 };
 
 // Convex ridge edges whose turning angle exceeds the threshold.
@@ -112,11 +132,11 @@ struct Sectors {
   std::vector<int> column;           // per sector: its column
 };
 
-Sectors sectors_of(const VertexFan& fan, int v, const std::map<EdgeKey, int>& ridge_index) {
+Sectors sectors_of(const VertexFan& fan, int v, const RidgeIndex& ridge_index) {
   const int k = static_cast<int>(fan.triangles.size());
   std::vector<int> split;  // fan triangle i whose leading edge (v, ring[i]) is a ridge
   for (int i = 0; i < k; ++i)
-    if (ridge_index.count(edge_key(v, fan.ring[i]))) split.push_back(i);
+    if (ridge_index.find(v, fan.ring[i]) >= 0) split.push_back(i);
   Sectors s;
   s.first = split;
   s.sector_of.assign(k, -1);
@@ -189,9 +209,9 @@ class LayoutBuilder {
       while (drop_adjacent_ridge_ends(wall_, ridges_, is_fan_, &no_fan));
     }
     degree_.assign(nv_, 0);
+    ridge_index_.build(ridges_);
     for (int i = 0; i < static_cast<int>(ridges_.size()); ++i) {
       const Ridge& r = ridges_[i];
-      ridge_index_[edge_key(r.a, r.b)] = i;
       ++degree_[r.a];
       ++degree_[r.b];
       out_.n_ridge_ends += is_fan_[r.a] != is_fan_[r.b];
@@ -233,6 +253,8 @@ class LayoutBuilder {
   void count_slices() {
     const int nr = static_cast<int>(ridges_.size());
     chains_ = UnionFind(nr);
+    chain_m_.assign(nr, 0);
+    fan_lists_.assign(nv_, {});
     std::vector<int> first_ridge_at(nv_, -1);
     for (int i = 0; i < nr; ++i)
       for (int x : {ridges_[i].a, ridges_[i].b}) {
@@ -245,7 +267,7 @@ class LayoutBuilder {
     const double max_sector = std::max(p_.max_sector_deg, 1.0) * kDegToRad;
     for (int i = 0; i < nr; ++i) {
       const Ridge& r = ridges_[i];
-      int& m = chain_m_[chains_.find(i)];
+      int& m = chain_m_[chains_.find(i)];  // 0 until a ridge of the chain sets it
       m = std::max(m, 1);
       for (int x : {r.a, r.b}) {
         if (!is_fan_[x]) continue;
@@ -280,7 +302,9 @@ class LayoutBuilder {
       const std::vector<int> lb = fan_across(r.b, r.t0, r.t1, m);
       for (int j = 0; j < m; ++j) {
         const std::array<int, 4> q{la[j], la[j + 1], lb[j + 1], lb[j]};
-        for (int k = 0; k < 4; ++k) quad_edges_.insert({q[k], q[(k + 1) % 4]});
+        // The corner patches ask for the edges between two columns of their own point.
+        if (is_corner(r.a)) corner_edges_.push_back({q[0], q[1]});
+        if (is_corner(r.b)) corner_edges_.push_back({q[2], q[3]});
         if (is_fan_[r.a] && is_fan_[r.b]) {
           out_.elements.push_back({ElementKind::kStrip, q});
           add_triangle({q[0], q[1], q[2]}, -1);
@@ -301,8 +325,9 @@ class LayoutBuilder {
 
   // Corner patches: the loop of directions around the corner, closed around a centre.
   void add_corner_patches() {
+    std::sort(corner_edges_.begin(), corner_edges_.end());
     for (int v = 0; v < nv_; ++v) {
-      if (!is_fan_[v] || degree_[v] < 3) continue;
+      if (!is_corner(v)) continue;
       ++out_.n_corners;
       const int n_sectors = static_cast<int>(sectors_[v].first.size());
       std::vector<int> loop;
@@ -312,7 +337,9 @@ class LayoutBuilder {
         // The ridge between sector s and the next: the leading edge of the next one's
         // first triangle, between that triangle and the one before it (sector s).
         const int i = sectors_[v].first[(s + 1) % n_sectors];
-        const int m = slices_of_ridge(ridge_index_.at(edge_key(v, fan.ring[i])));
+        const int ridge = ridge_index_.find(v, fan.ring[i]);
+        BLAYER_ASSERT(ridge >= 0);
+        const int m = slices_of_ridge(ridge);
         const std::vector<int> l = fan_across(v, fan.triangles[(i + k - 1) % k], fan.triangles[i], m);
         loop.insert(loop.end(), l.begin(), l.end() - 1);
       }
@@ -321,7 +348,8 @@ class LayoutBuilder {
       const int centre = add_column(v, normalized(sum), true, true);
       for (std::size_t i = 0; i < loop.size(); ++i) {
         const int x = loop[i], y = loop[(i + 1) % loop.size()];
-        const Triangle t = quad_edges_.count({x, y}) > 0 ? Triangle{centre, y, x} : Triangle{centre, x, y};
+        const bool strip_edge = std::binary_search(corner_edges_.begin(), corner_edges_.end(), std::make_pair(x, y));
+        const Triangle t = strip_edge ? Triangle{centre, y, x} : Triangle{centre, x, y};
         out_.elements.push_back({ElementKind::kTriangle, {t[0], t[1], t[2], -1}});
         add_triangle(t, -1);
       }
@@ -346,7 +374,9 @@ class LayoutBuilder {
     out_.element_of_triangle.push_back(static_cast<int>(out_.elements.size()) - 1);
   }
 
-  int slices_of_ridge(int ridge) { return chain_m_.at(chains_.find(ridge)); }
+  bool is_corner(int v) const { return is_fan_[v] && degree_[v] >= 3; }
+
+  int slices_of_ridge(int ridge) { return chain_m_[chains_.find(ridge)]; }
 
   // The sector of triangle f at fan point v.
   int sector_at(int v, int f) const {
@@ -363,17 +393,18 @@ class LayoutBuilder {
   std::vector<int> fan_across(int x, int f0, int f1, int m) {
     if (!is_fan_[x]) return std::vector<int>(m + 1, plain_column_[x]);
     const int s0 = sector_at(x, f0), s1 = sector_at(x, f1);
-    const std::array<int, 3> key{x, std::min(s0, s1), std::max(s0, s1)};
-    auto it = fan_list_.find(key);
-    if (it == fan_list_.end()) {
-      const int lo = key[1], hi = key[2];
+    const int lo = std::min(s0, s1), hi = std::max(s0, s1);
+    std::vector<FanList>& lists = fan_lists_[x];
+    auto it = std::find_if(lists.begin(), lists.end(), [&](const FanList& f) { return f.lo == lo && f.hi == hi; });
+    if (it == lists.end()) {
       std::vector<int> list{sectors_[x].column[lo]};
       for (int j = 1; j < m; ++j)
         list.push_back(add_column(x, slerp(sector_dir_[x][lo], sector_dir_[x][hi], double(j) / m), true, true));
       list.push_back(sectors_[x].column[hi]);
-      it = fan_list_.emplace(key, list).first;
+      lists.push_back({lo, hi, std::move(list)});
+      it = std::prev(lists.end());
     }
-    std::vector<int> l = it->second;
+    std::vector<int> l = it->columns;
     if (s0 > s1) std::reverse(l.begin(), l.end());
     return l;
   }
@@ -385,15 +416,22 @@ class LayoutBuilder {
   const int nv_;
   ColumnLayout out_;
   std::vector<Ridge> ridges_;
-  std::map<EdgeKey, int> ridge_index_;  // ridge edge -> index in ridges_
+  RidgeIndex ridge_index_;  // ridge edge -> index in ridges_
   std::vector<char> is_fan_;
   std::vector<int> degree_, plain_column_;
   std::vector<Sectors> sectors_;
   std::vector<std::vector<Vec3>> sector_dir_;
   UnionFind chains_{0};                       // of ridge indices
-  std::map<int, int> chain_m_;                // per chain root: its slices
-  std::map<std::array<int, 3>, std::vector<int>> fan_list_;
-  std::set<std::pair<int, int>> quad_edges_;  // directed column edges of the strips
+  std::vector<int> chain_m_;                  // per chain root (a ridge index): its slices
+  // Per point, the fans across its ridges (sectors lo < hi): a handful per point.
+  struct FanList {
+    int lo, hi;
+    std::vector<int> columns;
+  };
+  std::vector<std::vector<FanList>> fan_lists_;
+  // Directed edges of the strips between two columns of a corner point, sorted once the
+  // strips are all in: the only strip edges the corner patches ask for.
+  std::vector<std::pair<int, int>> corner_edges_;
 };
 
 }  // namespace
