@@ -147,8 +147,9 @@ class SiteSubdivision {
   // of cost, pairs are taken among the cell's vertices within reach (near_, which it
   // reorders).
   bool pair_bound_below(const Vec3& c, double rho);
-  // Removes from *crossing the faces whose circles lie where face `lowest` is infeasible.
-  void drop_circles_below_another(const Leaf& leaf, int lowest, std::vector<int>* crossing) const;
+  // Removes from *crossing the faces whose circles lie where another face of the leaf
+  // is infeasible.
+  void drop_circles_below_another(const Leaf& leaf, std::vector<int>* crossing);
   void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end);
   void offer(const Leaf& leaf, const Vec3& n);
   void offer_anywhere(const Vec3& n);
@@ -171,6 +172,8 @@ class SiteSubdivision {
   RecycledVector<int> arc_stamp_, vertex_stamp_;
   // Scratch of the cell being classified: (c.u_j, j) of the link vertices within reach.
   RecycledVector<std::pair<double, int>> near_;
+  // Scratch of the constraint-circle pass: (c.f_i, i) of a leaf's faces.
+  RecycledVector<std::pair<double, int>> by_visibility_;
   int pair_tries_ = 0, pair_drops_ = 0;
   int stamp_ = 0;
   RecycledVector<int> leaf_points_, leaf_arcs_;  // scratch of the cell being classified
