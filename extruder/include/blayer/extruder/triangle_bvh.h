@@ -215,18 +215,22 @@ class TriangleBvh {
     for (int i = 0; i < 3; ++i) inv[i] = 1.0 / (dir[i] == 0.0 ? 0.0 : dir[i]);
     // Holds one entry per level of the current path plus one: the builder caps the
     // depth below 72 (kMaxSurfaceAreaDepth in triangle_bvh.cpp).
+    // A node is tested before it is pushed, and again when popped only if a visit has
+    // shortened the segment since: the nodes visited are those whose boxes the segment
+    // meets when their turn comes, as if each were tested then.
     int stack[128];
     int top = 0;
-    stack[top++] = 0;
+    const double t_start = t_max;
+    if (segment_hits_box(origin, inv, t_max, nodes_[0].box)) stack[top++] = 0;
     while (top > 0) {
       const Node& n = nodes_[stack[--top]];
-      if (!segment_hits_box(origin, inv, t_max, n.box)) continue;
+      if (t_max < t_start && !segment_hits_box(origin, inv, t_max, n.box)) continue;
       if (n.count > 0) {
         for (int i = n.first; i < n.first + n.count; ++i)
           if (segment_hits_box(origin, inv, t_max, item_box_[i])) visit(items_[i], &t_max);
       } else {
-        stack[top++] = n.first;
-        stack[top++] = n.first + n.left_nodes;
+        for (const int child : {n.first, n.first + n.left_nodes})
+          if (segment_hits_box(origin, inv, t_max, nodes_[child].box)) stack[top++] = child;
       }
     }
   }
