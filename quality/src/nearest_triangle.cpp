@@ -1,6 +1,10 @@
 #include "nearest_triangle.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -60,19 +64,6 @@ double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
 
 }  // namespace
 
-NearestTriangleTree::NearestTriangleTree(const TriSurface& surface) : surface_(surface) {
-  const int n = static_cast<int>(surface.triangles.size());
-  order_.resize(n);
-  centroid_.resize(n);
-  for (int t = 0; t < n; ++t) {
-    order_[t] = t;
-    const Triangle& tri = surface.triangles[t];
-    centroid_[t] = (surface.points[tri[0]] + surface.points[tri[1]] + surface.points[tri[2]]) / 3.0;
-  }
-  nodes_.reserve(n > 0 ? 2 * (n / kLeafSize + 1) : 0);
-  if (n > 0) build(0, n, 0);
-}
-
 void NearestTriangleTree::triangle_box(int t, Vec3* lo, Vec3* hi) const {
   const Triangle& tri = surface_.triangles[t];
   *lo = *hi = surface_.points[tri[0]];
@@ -83,48 +74,99 @@ void NearestTriangleTree::triangle_box(int t, Vec3* lo, Vec3* hi) const {
     }
 }
 
-int NearestTriangleTree::build(int begin, int end, int depth) {
-  Node node;
-  const double inf = std::numeric_limits<double>::infinity();
-  node.lo = {inf, inf, inf};
-  node.hi = {-inf, -inf, -inf};
-  Vec3 clo = node.lo, chi = node.hi;
-  for (int i = begin; i < end; ++i) {
-    Vec3 lo, hi;
-    triangle_box(order_[i], &lo, &hi);
-    for (int k = 0; k < 3; ++k) {
-      node.lo[k] = std::min(node.lo[k], lo[k]);
-      node.hi[k] = std::max(node.hi[k], hi[k]);
-      clo[k] = std::min(clo[k], centroid_[order_[i]][k]);
-      chi[k] = std::max(chi[k], centroid_[order_[i]][k]);
+// Builds the subtree of order_[begin, end) in preorder into `nodes`, numbered from 0
+// there; the caller shifts a subtree's child indices when it places it. Large subtrees
+// build their two halves in parallel (the halves' ranges of order_ are disjoint) and
+// splice them in order, so the nodes are those of a serial preorder build.
+struct NearestTriangleTree::Builder {
+  NearestTriangleTree& tree;
+  const std::vector<std::array<Vec3, 2>>& boxes;
+
+  int build(int begin, int end, int depth, std::vector<Node>* nodes) const {
+    std::vector<int>& order = tree.order_;
+    const std::vector<Vec3>& centroid = tree.centroid_;
+    Node node;
+    const double inf = std::numeric_limits<double>::infinity();
+    node.lo = {inf, inf, inf};
+    node.hi = {-inf, -inf, -inf};
+    Vec3 clo = node.lo, chi = node.hi;
+    for (int i = begin; i < end; ++i) {
+      const std::array<Vec3, 2>& box = boxes[order[i]];
+      for (int k = 0; k < 3; ++k) {
+        node.lo[k] = std::min(node.lo[k], box[0][k]);
+        node.hi[k] = std::max(node.hi[k], box[1][k]);
+        clo[k] = std::min(clo[k], centroid[order[i]][k]);
+        chi[k] = std::max(chi[k], centroid[order[i]][k]);
+      }
     }
+    node.begin = begin;
+    node.end = end;
+    const int id = static_cast<int>(nodes->size());
+    nodes->push_back(node);
+    if (end - begin <= kLeafSize) return id;
+    int mid = -1;
+    if (depth < kMaxSurfaceAreaDepth) {
+      const int l = surface_area_split(
+          order.data() + begin, end - begin, clo, chi,
+          [&](int t, Vec3* lo, Vec3* hi) {
+            *lo = boxes[t][0];
+            *hi = boxes[t][1];
+          },
+          [&](int t) -> const Vec3& { return centroid[t]; });
+      if (l > 0) mid = begin + l;
+    }
+    if (mid < 0) {
+      int axis = 0;
+      for (int k = 1; k < 3; ++k)
+        if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
+      mid = begin + (end - begin) / 2;
+      std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                       [&](int x, int y) { return centroid[x][axis] < centroid[y][axis]; });
+    }
+    if (std::min(mid - begin, end - mid) > kParallelBuildItems / 4 && end - begin > kParallelBuildItems) {
+      std::vector<Node> left, right;
+      tbb::parallel_invoke([&] { build(begin, mid, depth + 1, &left); },
+                           [&] { build(mid, end, depth + 1, &right); });
+      nodes->reserve(nodes->size() + left.size() + right.size());
+      (*nodes)[id].left = append(left, nodes);
+      (*nodes)[id].right = append(right, nodes);
+    } else {
+      const int left = build(begin, mid, depth + 1, nodes);
+      const int right = build(mid, end, depth + 1, nodes);
+      (*nodes)[id].left = left;
+      (*nodes)[id].right = right;
+    }
+    return id;
   }
-  node.begin = begin;
-  node.end = end;
-  const int id = static_cast<int>(nodes_.size());
-  nodes_.push_back(node);
-  if (end - begin <= kLeafSize) return id;
-  int mid = -1;
-  if (depth < kMaxSurfaceAreaDepth) {
-    const int l = surface_area_split(
-        order_.data() + begin, end - begin, clo, chi,
-        [&](int t, Vec3* lo, Vec3* hi) { triangle_box(t, lo, hi); },
-        [&](int t) -> const Vec3& { return centroid_[t]; });
-    if (l > 0) mid = begin + l;
+
+  // Appends a subtree numbered from 0 and returns the index of its root.
+  static int append(const std::vector<Node>& sub, std::vector<Node>* nodes) {
+    const int offset = static_cast<int>(nodes->size());
+    for (Node nd : sub) {
+      if (nd.left >= 0) {
+        nd.left += offset;
+        nd.right += offset;
+      }
+      nodes->push_back(nd);
+    }
+    return offset;
   }
-  if (mid < 0) {
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
-    mid = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                     [&](int x, int y) { return centroid_[x][axis] < centroid_[y][axis]; });
-  }
-  const int left = build(begin, mid, depth + 1);
-  const int right = build(mid, end, depth + 1);
-  nodes_[id].left = left;
-  nodes_[id].right = right;
-  return id;
+};
+
+NearestTriangleTree::NearestTriangleTree(const TriSurface& surface) : surface_(surface) {
+  const int n = static_cast<int>(surface.triangles.size());
+  order_.resize(n);
+  centroid_.resize(n);
+  // The triangles' boxes, once: the build reads each at every level of the tree.
+  std::vector<std::array<Vec3, 2>> boxes(n);
+  tbb::parallel_for(0, n, [&](int t) {
+    order_[t] = t;
+    const Triangle& tri = surface.triangles[t];
+    centroid_[t] = (surface.points[tri[0]] + surface.points[tri[1]] + surface.points[tri[2]]) / 3.0;
+    triangle_box(t, &boxes[t][0], &boxes[t][1]);
+  });
+  nodes_.reserve(n > 0 ? 2 * (n / kLeafSize + 1) : 0);
+  if (n > 0) Builder{*this, boxes}.build(0, n, 0, &nodes_);
 }
 
 NearestTriangleTree::Hit NearestTriangleTree::nearest(const Vec3& p) const {
