@@ -83,10 +83,8 @@ SiteSubdivision::SiteSubdivision(const FanSites& sites, CandidatePool* pool)
   lune1_.resize(k_);
   lune2_.resize(k_);
   for (int i = 0; i < k_; ++i) {
-    // Foot inside arc i: (u x m).f >= 0 and (m x v).f >= 0 with m = n - (n.f) f, i.e.
-    // n.(f x u) >= 0 and n.(v x f) >= 0.
-    lune1_[i] = normalized(cross(g_.face_normals[i], g_.arc_start(i)));
-    lune2_[i] = normalized(cross(g_.arc_end(i), g_.face_normals[i]));
+    lune1_[i] = arc_start_lune(g_, i);
+    lune2_[i] = arc_end_lune(g_, i);
   }
   const int na = static_cast<int>(s_.arcs.size());
   merged_lune1_.resize(na);
@@ -241,18 +239,25 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   arena_.resize(own_arcs);
 }
 
-// The sites that can be nearest in a cell: reflex ends of the kept arcs within reach,
-// and merged arcs whose foot-inside lune meets the cap. A generator s of a candidate that
-// can still become a maximiser has d_s = D >= thr there, and an arc's interior is at
-// arcsin|n.g| <= arcsin(|c.g| + rho) in the cell: arcs whose circle passes nearer cannot
-// generate one (none can above 90 degrees). The ends within reach, reflex or not, are
-// kept in near_ for the pair bound.
+// The sites that can be nearest in a cell: reflex ends of the kept arcs within reach
+// whose wedge meets the cap, and merged arcs whose foot-inside lune meets the cap. A
+// generator s of a candidate that can still become a maximiser has d_s = D >= thr there,
+// and an arc's interior is at arcsin|n.g| <= arcsin(|c.g| + rho) in the cell: arcs whose
+// circle passes nearer cannot generate one (none can above 90 degrees). A link vertex w
+// lies on both its arcs, so it is nearest only where it is the nearest point of each:
+// where n's foot on the incoming arc's circle lies beyond w (n.lune2 <= 0) and its foot
+// on the outgoing one's before w (n.lune1 <= 0). Elsewhere a foot inside an arc is
+// nearer than w, and a foot past the arc's other end is nearer to that end: arcs are
+// shorter than a half circle. At a nearly flat reflex junction this wedge is a thin
+// band around the great circle through w across the arcs. The ends within reach,
+// reflex or not, are kept in near_ for the pair bound.
 void SiteSubdivision::gather_sites(const Vec3& c, double rho, double cos_reach, int arcs_begin, int arcs_end) {
   ++stamp_;
   near_.clear();
   leaf_points_.clear();
   leaf_arcs_.clear();
   const double lune_reach = -sin_bound(rho + kBoundMargin);
+  const double wedge_reach = -lune_reach;
   const double thr = pool_.threshold() - kBoundMargin;
   const double arc_reach = thr <= 0.0 ? -1.0 : (thr > 0.5 * M_PI ? 3.0 : std::sin(thr) - rho - kBoundMargin);
   for (int t = arcs_begin; t < arcs_end; ++t) {
@@ -263,7 +268,9 @@ void SiteSubdivision::gather_sites(const Vec3& c, double rho, double cos_reach, 
       const double cu = dot(c, g_.dirs[j]);
       if (!(cu >= cos_reach)) continue;
       near_.push_back({cu, j});
-      if (s_.point_of_vertex[j] >= 0) leaf_points_.push_back(s_.point_of_vertex[j]);
+      if (s_.point_of_vertex[j] >= 0 && dot(c, lune2_[(j + k_ - 1) % k_]) <= wedge_reach &&
+          dot(c, lune1_[j]) <= wedge_reach)
+        leaf_points_.push_back(s_.point_of_vertex[j]);
     }
     const int m = s_.arc_of_face[i];
     if (arc_stamp_[m] == stamp_) continue;

@@ -16,7 +16,9 @@
 // arc, and c is not fluid). Otherwise it inherits the parent's surviving sites and
 // faces and is split, until at most kLeafSites sites can be nearest in it, or they stop
 // changing, or the cell is tiny. An arc counts only where its interior can be nearest
-// (the cap meets its foot-inside lune) and can still reach the threshold.
+// (the cap meets its foot-inside lune) and can still reach the threshold, a reflex link
+// vertex only where the cap meets its wedge: beyond the ends of both its arcs, the only
+// directions to which it is nearer than they are.
 //
 // Exactness. Every local maximum of D (with or without the constraint V >= V_min) is a
 // candidate of the subset of the sites nearest to it (docs/normals.md, "Why exact"): a
@@ -80,6 +82,13 @@ inline bool great_circle_meets_cap(const Vec3& c, double cos_cap, const Vec3& h)
   const double sin_reach = std::sqrt(std::max(0.0, 1.0 - cos_cap * cos_cap) + 4e-15) + 1e-12;
   return std::fabs(dot(c, h)) <= sin_reach * norm(h);
 }
+
+// The foot-inside lune of fan arc i, as two half-spaces: n's foot on the arc's great
+// circle lies inside the arc iff n.arc_start_lune(g, i) >= 0 (not before its start)
+// and n.arc_end_lune(g, i) >= 0 (not past its end). With m = n - (n.f) f: (u x m).f >= 0
+// is n.(f x u) >= 0, and (m x v).f >= 0 is n.(v x f) >= 0.
+inline Vec3 arc_start_lune(const FanGeometry& g, int i) { return normalized(cross(g.face_normals[i], g.arc_start(i))); }
+inline Vec3 arc_end_lune(const FanGeometry& g, int i) { return normalized(cross(g.arc_end(i), g.face_normals[i])); }
 
 struct SubdivisionStats {
   int cells = 0;

@@ -205,6 +205,47 @@ TEST(SiteSubdivision, PairBoundHoldsOnEverySampledDirectionOfTheCap) {
   EXPECT_GT(bounded, 1500);
 }
 
+// The subdivision counts a link vertex w as a site of a cell only where the cell meets
+// its wedge {n.arc_end_lune(in) <= 0, n.arc_start_lune(out) <= 0}: outside it, one of
+// w's two arcs has a point nearer than w, so w generates no candidate there. Checked
+// with the reference arc distance on random and CAD-like fans (the latter's nearly flat
+// junctions have wedges a fraction of a degree wide), at random directions and at
+// directions near w. Inside the wedge, near w, w is its arcs' nearest point (a tie):
+// there it can generate, and a lune of the wrong sign would put such directions
+// outside.
+TEST(SiteSubdivision, LinkVertexIsTheNearestPointOfItsArcsOnlyInItsWedge) {
+  std::mt19937 rng(53);
+  std::normal_distribution<double> nd;
+  auto random_unit = [&]() { return normalized(Vec3{nd(rng), nd(rng), nd(rng)}); };
+  int outside = 0, inside_tied = 0;
+  auto check = [&](const FanGeometry& g, const std::string& label) {
+    const oracle::Link link = oracle::make_link(g.dirs);
+    const int k = g.n_faces();
+    for (int j = 0; j < k; ++j) {
+      const int in = (j + k - 1) % k;
+      const Vec3& w = g.dirs[j];
+      const Vec3 a = detail::arc_end_lune(g, in), b = detail::arc_start_lune(g, j);
+      for (int s = 0; s < 60; ++s) {
+        const Vec3 n = s < 20 ? random_unit() : normalized(w + std::pow(10.0, -3.0 * (s % 4)) * random_unit());
+        const double to_w = std::atan2(norm(cross(n, w)), dot(n, w));
+        const double to_arcs = std::min(oracle::arc_distance(link, in, n), oracle::arc_distance(link, j, n));
+        if (dot(n, a) > 1e-4 || dot(n, b) > 1e-4) {
+          ++outside;
+          ASSERT_GT(to_w, to_arcs) << label << " vertex " << j << " sample " << s;
+        } else if (dot(n, a) < -1e-4 && dot(n, b) < -1e-4 && std::fabs(to_w - to_arcs) <= 1e-12) {
+          ++inside_tied;
+        }
+      }
+    }
+  };
+  for_each_random_fan(rng, 40, check);
+  testing_fans::for_each_cad_fan(rng, {12, 40}, 2, [&](const FanGeometry& g, const std::string& label) {
+    check(g, label);
+  });
+  EXPECT_GT(outside, 50000);
+  EXPECT_GT(inside_tied, 5000);
+}
+
 // The constraint pass builds the points of a great circle {n.h = 0} in a leaf only when
 // great_circle_meets_cap says the circle can hold a direction the leaf admits
 // (n.c >= cos_cap). For random leaves, of radii down to 1e-9 where the cosine margin
