@@ -169,6 +169,41 @@ NearestTriangleTree::NearestTriangleTree(const TriSurface& surface) : surface_(s
   if (n > 0) Builder{*this, boxes}.build(0, n, 0, &nodes_);
 }
 
+bool NearestTriangleTree::well_formed() const {
+  if (nodes_.empty()) return order_.empty();
+  std::vector<char> seen(nodes_.size(), 0), held(order_.size(), 0);
+  auto inside = [](const Node& in, const Node& out) {
+    for (int k = 0; k < 3; ++k)
+      if (in.lo[k] < out.lo[k] || in.hi[k] > out.hi[k]) return false;
+    return true;
+  };
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    if (id < 0 || id >= static_cast<int>(nodes_.size()) || seen[id]) return false;
+    seen[id] = 1;
+    const Node& node = nodes_[id];
+    if (node.left < 0) {
+      for (int i = node.begin; i < node.end; ++i) {
+        if (held[order_[i]]) return false;
+        held[order_[i]] = 1;
+      }
+      continue;
+    }
+    if (node.right < 0 || node.right >= static_cast<int>(nodes_.size()) || node.left >= static_cast<int>(nodes_.size()))
+      return false;
+    const Node& l = nodes_[node.left];
+    const Node& r = nodes_[node.right];
+    if (l.begin != node.begin || l.end != r.begin || r.end != node.end || !inside(l, node) || !inside(r, node))
+      return false;
+    stack.push_back(node.left);
+    stack.push_back(node.right);
+  }
+  return std::all_of(seen.begin(), seen.end(), [](char x) { return x != 0; }) &&
+         std::all_of(held.begin(), held.end(), [](char x) { return x != 0; });
+}
+
 NearestTriangleTree::Hit NearestTriangleTree::nearest(const Vec3& p) const {
   Hit hit;
   if (nodes_.empty()) {

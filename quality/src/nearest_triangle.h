@@ -34,6 +34,10 @@ class NearestTriangleTree {
     Vec3 point{0.0, 0.0, 0.0};
   };
   Hit nearest(const Vec3& p) const;
+  // Whether the nodes form one tree from node 0 (each node reached once) whose leaves
+  // hold every triangle once, each inner node's range split between its children and
+  // its box holding theirs (for the tests).
+  bool well_formed() const;
 
  private:
   static constexpr int kLeafSize = 4;
