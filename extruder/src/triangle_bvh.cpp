@@ -12,10 +12,6 @@ namespace blayer {
 
 namespace {
 
-// Subtrees above this many items are built in parallel; below it the task overhead
-// outweighs the work.
-constexpr int kParallelBuildItems = 1 << 12;
-
 // Below this depth nodes are split by surface area, deeper ones at the median. A
 // surface-area split may peel off a few items per level (boxes graded over hundreds of
 // orders of magnitude), and the segment query's stack holds one entry per level; the
@@ -74,9 +70,8 @@ struct TriangleBvh::Builder {
     const int l = depth < kMaxSurfaceAreaDepth ? surface_area_split(first, count, cb) : median_split(first, count, cb);
     (*nodes)[node].count = 0;
     (*nodes)[node].first = node + 1;
-    // Only halves that both carry real work are worth a task (a surface-area split may
-    // peel off a handful of items), and each spliced level copies its subtrees once.
-    if (std::min(l, count - l) > kParallelBuildItems / 4 && count > kParallelBuildItems) {
+    // Each spliced level copies its subtrees once.
+    if (build_halves_in_parallel(l, count - l)) {
       std::vector<Node> left, right;
       tbb::parallel_invoke([&] { build(first, l, depth + 1, &left); },
                            [&] { build(first + l, count - l, depth + 1, &right); });

@@ -76,8 +76,9 @@ void NearestTriangleTree::triangle_box(int t, Vec3* lo, Vec3* hi) const {
 
 // Builds the subtree of order_[begin, end) in preorder into `nodes`, numbered from 0
 // there; the caller shifts a subtree's child indices when it places it. Large subtrees
-// build their two halves in parallel (the halves' ranges of order_ are disjoint) and
-// splice them in order, so the nodes are those of a serial preorder build.
+// (build_halves_in_parallel) build their two halves in parallel (their ranges of order_
+// are disjoint) and splice them in order, so the nodes are those of a serial preorder
+// build.
 struct NearestTriangleTree::Builder {
   NearestTriangleTree& tree;
   const std::vector<std::array<Vec3, 2>>& boxes;
@@ -123,7 +124,7 @@ struct NearestTriangleTree::Builder {
       std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
                        [&](int x, int y) { return centroid[x][axis] < centroid[y][axis]; });
     }
-    if (std::min(mid - begin, end - mid) > kParallelBuildItems / 4 && end - begin > kParallelBuildItems) {
+    if (build_halves_in_parallel(mid - begin, end - mid)) {
       std::vector<Node> left, right;
       tbb::parallel_invoke([&] { build(begin, mid, depth + 1, &left); },
                            [&] { build(mid, end, depth + 1, &right); });

@@ -48,8 +48,6 @@ class NearestTriangleTree {
     int begin = 0, end = 0;  // range of order_ for leaves
     int left = -1, right = -1;
   };
-  // Subtrees above this many triangles are built in parallel.
-  static constexpr int kParallelBuildItems = 1 << 12;
   struct Builder;
   void triangle_box(int t, Vec3* lo, Vec3* hi) const;
 

@@ -11,6 +11,7 @@
 
 #include "../../quality/src/nearest_triangle.h"
 #include "analytic_surfaces.h"
+#include "blayer/core/surface_area_split.h"
 
 namespace blayer {
 namespace {
@@ -316,13 +317,13 @@ TEST(NearestTriangle, TreeDistanceEqualsBruteForceMinimum) {
   }
 }
 
-// Above 4,096 triangles the tree's halves are built as parallel tasks and spliced
-// (nearest_triangle.cpp): on a sphere of 20,480 triangles the nodes still form one tree
-// whose leaves hold each triangle once, and with queries inside, outside and near the
-// surface the distance is the brute-force minimum.
+// Above kParallelBuildItems triangles the tree's halves are built as parallel tasks and
+// spliced (nearest_triangle.cpp): on a sphere of 20,480 triangles the nodes still form
+// one tree whose leaves hold each triangle once, and with queries inside, outside and
+// near the surface the distance is the brute-force minimum.
 TEST(NearestTriangle, TreeBuiltFromParallelHalvesEqualsBruteForceMinimum) {
   const TriSurface s = test_surfaces::icosphere(5);
-  ASSERT_GT(s.triangles.size(), 4u * 4096u);
+  ASSERT_GT(s.triangles.size(), 4u * kParallelBuildItems);
   const detail::NearestTriangleTree tree(s);
   EXPECT_TRUE(tree.well_formed());
   std::mt19937 rng(17);

@@ -21,6 +21,15 @@ namespace blayer {
 // fewer coarsen it on graded meshes).
 constexpr int kSurfaceAreaBins = 16;
 
+// Whether a tree builder builds the two halves of a split as parallel tasks: only when
+// the node holds more than kParallelBuildItems items and both halves carry real work (a
+// surface-area split may peel off a handful of items); below that the task overhead
+// outweighs the work. Shared by both trees' builders.
+constexpr int kParallelBuildItems = 1 << 12;
+inline bool build_halves_in_parallel(int n_left, int n_right) {
+  return n_left + n_right > kParallelBuildItems && std::min(n_left, n_right) > kParallelBuildItems / 4;
+}
+
 // Reorders items[0, count) so that the left child takes the first l of them and returns
 // l, 0 < l < count: the split between two centroid bins, on any of the three axes, of
 // least area(left) * n_left + area(right) * n_right, where area is half a box's surface.
