@@ -69,7 +69,9 @@ bool coplanar_segment_triangle(const Vec3& p, const Vec3& q, const Vec3& a, cons
   return segments_intersect_2d(P, Q, A, B) || segments_intersect_2d(P, Q, B, C) || segments_intersect_2d(P, Q, C, A);
 }
 
-// For d coplanar with triangle abc: are c and d strictly on the same side of line ab?
+// Are c and d strictly on the same side of line ab, in the projection that drops the
+// dominant axis of triangle abc's normal? For d coplanar with abc, the same side in the
+// plane.
 bool coplanar_same_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   int i, j;
   projection_axes(a, b, c, &i, &j);
@@ -97,6 +99,62 @@ bool coplanar_corner_angles_meet(const Vec3& v, const Vec3& sa, const Vec3& sb, 
     return o * orient2d(V, a, x) >= 0 && o * orient2d(V, x, b) >= 0;
   };
   return in_angle(SA, SB, os, TA) || in_angle(SA, SB, os, TB) || in_angle(TA, TB, ot, SA) || in_angle(TA, TB, ot, SB);
+}
+
+// orient2d where the floating-point filter certifies the sign, else 0 ("cannot decide").
+int orient2d_filter(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return detail::orient3d_filter({a[0], a[1], 0.0}, {b[0], b[1], 0.0}, {c[0], c[1], 0.0}, {0.0, 0.0, 1.0});
+}
+
+// Certificates of disjointness for the pairs whose plane tests the filter cannot decide:
+// the nearly coplanar neighbours of a flat stretch of front, which would otherwise go to
+// the exact predicate several times per pair. Both project the two triangles along the
+// dominant axis of the first's normal and certify, with the filter alone, that the
+// projections share no point (no point beyond the shared corner v). A common point of
+// the triangles would project to a common point of the projections, so the triangles are
+// then disjoint (beyond v), whether or not they are coplanar. False means "not
+// certified", never "they meet": the exact tests decide then.
+
+// No shared corner: the line of an edge of one projection has the other projection
+// strictly on its far side (two disjoint convex polygons always have such an edge).
+bool edge_line_separates(const Vec2* p, const Vec2* q) {
+  for (int k = 0; k < 3; ++k) {
+    const Vec2& a = p[k];
+    const Vec2& b = p[kNext[k]];
+    const int own = orient2d_filter(a, b, p[kAfterNext[k]]);
+    if (own != 0 && orient2d_filter(a, b, q[0]) == -own && orient2d_filter(a, b, q[1]) == -own &&
+        orient2d_filter(a, b, q[2]) == -own)
+      return true;
+  }
+  return false;
+}
+
+bool projections_apart(const Vec3* const* s, const Vec3* const* t) {
+  int i, j;
+  projection_axes(*s[0], *s[1], *s[2], &i, &j);
+  const Vec2 S[3] = {{(*s[0])[i], (*s[0])[j]}, {(*s[1])[i], (*s[1])[j]}, {(*s[2])[i], (*s[2])[j]}};
+  const Vec2 T[3] = {{(*t[0])[i], (*t[0])[j]}, {(*t[1])[i], (*t[1])[j]}, {(*t[2])[i], (*t[2])[j]}};
+  return edge_line_separates(S, T) || edge_line_separates(T, S);
+}
+
+// Triangles (v, sa, sb) and (v, ta, tb) sharing corner v: both projections have non-zero
+// area and each side ray of one lies strictly outside the other's angle at v, so the
+// angles (and the projections in them) share only v's projection. A common point x of
+// the triangles other than v would then project onto v's, i.e. x - v would be parallel
+// to the dropped axis; the first triangle holds no such segment, its normal having a
+// non-zero component along that axis (its projection has area).
+bool corner_angles_apart(const Vec3& v, const Vec3& sa, const Vec3& sb, const Vec3& ta, const Vec3& tb) {
+  int i, j;
+  projection_axes(v, sa, sb, &i, &j);
+  const Vec2 V{v[i], v[j]}, SA{sa[i], sa[j]}, SB{sb[i], sb[j]}, TA{ta[i], ta[j]}, TB{tb[i], tb[j]};
+  const int os = orient2d_filter(V, SA, SB), ot = orient2d_filter(V, TA, TB);
+  if (os == 0 || ot == 0) return false;
+  // The ray V x leaves the closed angle (V; a, b) of orientation o when x is strictly on
+  // the wrong side of either of its sides.
+  auto outside = [&](const Vec2& a, const Vec2& b, int o, const Vec2& x) {
+    return o * orient2d_filter(V, a, x) < 0 || o * orient2d_filter(V, x, b) < 0;
+  };
+  return outside(SA, SB, os, TA) && outside(SA, SB, os, TB) && outside(TA, TB, ot, SA) && outside(TA, TB, ot, SB);
 }
 
 // segment_intersects_triangle given the orientations of p and q against the plane abc.
@@ -160,10 +218,18 @@ bool triangles_intersect(const Vec3* const* s, const Vec3* const* t) {
   // almost every pair of nearby front triangles with 3 or 6 orientations instead of up
   // to 30 in the edge tests below, which decide the remaining pairs.
   // The edge tests reuse these sides of the edges' ends.
+  // Where the filter cannot decide a side, the projections are tried before the exact
+  // predicate (projections_apart).
   int s_side[3], t_side[3];
-  detail::orient3d_sides(*t[0], *t[1], *t[2], s, 3, s_side);
+  if (!detail::orient3d_sides_filter(*t[0], *t[1], *t[2], s, 3, s_side)) {
+    if (projections_apart(s, t)) return false;
+    detail::orient3d_sides_settle(*t[0], *t[1], *t[2], s, 3, s_side);
+  }
   if (strictly_one_side(s_side[0], s_side[1], s_side[2])) return false;
-  detail::orient3d_sides(*s[0], *s[1], *s[2], t, 3, t_side);
+  if (!detail::orient3d_sides_filter(*s[0], *s[1], *s[2], t, 3, t_side)) {
+    if (projections_apart(s, t)) return false;
+    detail::orient3d_sides_settle(*s[0], *s[1], *s[2], t, 3, t_side);
+  }
   if (strictly_one_side(t_side[0], t_side[1], t_side[2])) return false;
   if (no_zero(s_side) && no_zero(t_side)) return crossing_triangles_meet(s, t, s_side, t_side);
   for (int k = 0; k < 3; ++k) {
@@ -218,9 +284,12 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
     const Vec3& b = pts[s[shared_s[1]]];
     const Vec3& c = pts[s[os]];
     const Vec3& d = pts[t[ot]];
-    if (detail::orient3d_filtered(a, b, c, d) != 0) return false;
-    // Coplanar: a fold iff c and d lie on the same side of the line ab in that plane.
-    return coplanar_same_side(a, b, c, d);
+    // A fold iff the four points are coplanar and c and d lie on the same side of the
+    // line ab in that plane. The filter settles almost every pair as not coplanar; where
+    // it cannot (a flat stretch of front), the side test in the projection comes before
+    // the exact predicate: c and d apart there means no fold, coplanar or not.
+    if (detail::orient3d_filter(a, b, c, d) != 0) return false;
+    return coplanar_same_side(a, b, c, d) && orient3d_sign(a, b, c, d) == 0;
   }
   if (n_shared == 1) {
     const int is = shared_s[0], it = shared_t[0];
@@ -233,10 +302,24 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
     // at v alone: the first plane test settles most neighbours of a front.
     const Vec3* const s_far[2] = {&sa, &sb};
     const Vec3* const t_far[2] = {&ta, &tb};
+    // Where the filter cannot decide a side, the angles at v in the projection are tried
+    // before the exact predicate (corner_angles_apart), once.
     int s_side[2], t_side[2];
-    detail::orient3d_sides(v, ta, tb, s_far, 2, s_side);
+    bool angles_tried = false;
+    auto angles_apart = [&]() {
+      if (angles_tried) return false;
+      angles_tried = true;
+      return corner_angles_apart(v, sa, sb, ta, tb);
+    };
+    if (!detail::orient3d_sides_filter(v, ta, tb, s_far, 2, s_side)) {
+      if (angles_apart()) return false;
+      detail::orient3d_sides_settle(v, ta, tb, s_far, 2, s_side);
+    }
     if (s_side[0] * s_side[1] > 0) return false;
-    detail::orient3d_sides(v, sa, sb, t_far, 2, t_side);
+    if (!detail::orient3d_sides_filter(v, sa, sb, t_far, 2, t_side)) {
+      if (angles_apart()) return false;
+      detail::orient3d_sides_settle(v, sa, sb, t_far, 2, t_side);
+    }
     if (t_side[0] * t_side[1] > 0) return false;
     if (s_side[0] * s_side[1] < 0 && t_side[0] * t_side[1] < 0) return crossing_at_shared_corner(v, sa, sb, ta, tb);
     if (s_side[0] == 0 && s_side[1] == 0 && t_side[0] == 0 && t_side[1] == 0) {

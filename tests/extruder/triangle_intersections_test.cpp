@@ -142,6 +142,48 @@ TEST(TriangleIntersections, ZeroAreaNeighbourOffThePlaneMeetsOnlyAtTheSharedVert
   EXPECT_FALSE(soup_triangles_intersect(p, {0, 3, 4}, {0, 1, 2}));
 }
 
+// Pairs on a flat, tilted stretch of front (z = x / 2 + y / 4 on a dyadic grid, exact),
+// each corner left on it or moved one ulp or one subnormal off it: the plane tests
+// cannot decide these with floating point, and the projected certificates
+// (projections_apart, corner_angles_apart) settle most of them first. Every verdict must
+// be the definition's: an edge of one meets the other (no shared corner), an edge
+// opposite the shared corner meets the other triangle (one shared corner).
+TEST(TriangleIntersections, NearlyFlatPairsGetTheVerdictOfTheEdgeTests) {
+  testing::Lcg lcg(2718);
+  auto corner = [&]() {
+    const double x = std::floor(lcg.uniform() * 9.0) / 4.0, y = std::floor(lcg.uniform() * 9.0) / 4.0;
+    double z = x / 2.0 + y / 4.0;
+    const int off = static_cast<int>(lcg.uniform() * 4.0);
+    if (off == 1) z = std::nextafter(z, HUGE_VAL);
+    if (off == 2) z = std::nextafter(z, -HUGE_VAL);
+    if (off == 3) z += std::nextafter(0.0, 1.0);
+    return Vec3{x, y, z};
+  };
+  auto flat = [](const Vec3& a, const Vec3& b, const Vec3& c) { return norm2(cross(b - a, c - a)) == 0.0; };
+  int disjoint_hits = 0, disjoint_misses = 0, corner_hits = 0, corner_misses = 0;
+  for (int i = 0; i < 40000; ++i) {
+    std::vector<Vec3> p(6);
+    for (Vec3& x : p) x = corner();
+    if (flat(p[0], p[1], p[2]) || flat(p[3], p[4], p[5])) continue;
+    bool expected = false;
+    for (int k = 0; k < 3; ++k)
+      expected = expected || segment_intersects_triangle(p[k], p[(k + 1) % 3], p[3], p[4], p[5]) ||
+                 segment_intersects_triangle(p[3 + k], p[3 + (k + 1) % 3], p[0], p[1], p[2]);
+    ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {3, 4, 5}), expected) << "disjoint ids, pair " << i;
+    (expected ? disjoint_hits : disjoint_misses)++;
+    // The same corners with the first one shared (ids 0, 1, 2 and 0, 4, 5).
+    if (flat(p[0], p[4], p[5])) continue;
+    const bool beyond = segment_intersects_triangle(p[1], p[2], p[0], p[4], p[5]) ||
+                        segment_intersects_triangle(p[4], p[5], p[0], p[1], p[2]);
+    ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {0, 4, 5}), beyond) << "shared corner, pair " << i;
+    (beyond ? corner_hits : corner_misses)++;
+  }
+  EXPECT_GT(disjoint_hits, 1000);
+  EXPECT_GT(disjoint_misses, 1000);
+  EXPECT_GT(corner_hits, 1000);
+  EXPECT_GT(corner_misses, 1000);
+}
+
 // The BVH-based search must find exactly the pairs a brute-force double loop finds.
 TEST(TriangleIntersections, TreeSearchMatchesBruteForceOnRandomTriangles) {
   testing::Lcg lcg(12345);

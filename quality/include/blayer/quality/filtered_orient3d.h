@@ -49,8 +49,10 @@ inline int certain_sign(double det, double permanent, double largest_factor) {
   return det > err ? 1 : -det > err ? -1 : 0;
 }
 
-// Same contract as orient3d_sign: the sign of det[b-a, c-a, d-a].
-inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+// The sign of det[b-a, c-a, d-a] where the filter certifies it, else 0 ("cannot
+// decide", never "flat"): for callers that can settle an undecided case by another
+// argument before paying for the exact predicate.
+inline int orient3d_filter(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   // Shewchuk's orient3d(pa, pb, pc, pd) = det[pa-pd, pb-pd, pc-pd] = -det[b-a, c-a, d-a].
   const double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
   const double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
@@ -62,27 +64,48 @@ inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const 
   const double az = std::fabs(adz), bz = std::fabs(bdz), cz = std::fabs(cdz);
   const double permanent = (std::fabs(bdxcdy) + std::fabs(cdxbdy)) * az + (std::fabs(cdxady) + std::fabs(adxcdy)) * bz +
                            (std::fabs(adxbdy) + std::fabs(bdxady)) * cz;
-  const int sign = certain_sign(det, permanent, std::max(az, std::max(bz, cz)));
-  return sign != 0 ? -sign : orient3d_sign(a, b, c, d);
+  return -certain_sign(det, permanent, std::max(az, std::max(bz, cz)));
 }
 
-// out[i] = orient3d_filtered(a, b, c, *p[i]) for i < n, with the plane's minors shared.
-// The points are passed by address: the hot callers name them in a shared point array.
-inline void orient3d_sides(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* const* p, int n, int* out) {
+// Same contract as orient3d_sign: the sign of det[b-a, c-a, d-a].
+inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const int sign = orient3d_filter(a, b, c, d);
+  return sign != 0 ? sign : orient3d_sign(a, b, c, d);
+}
+
+// out[i] = orient3d_filter(a, b, c, *p[i]) for i < n (0: the filter cannot decide),
+// with the plane's minors shared; true when every sign was decided. The points are
+// passed by address: the hot callers name them in a shared point array.
+inline bool orient3d_sides_filter(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* const* p, int n,
+                                  int* out) {
   const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
   const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
   const double bycz = by * cz, bzcy = bz * cy, bzcx = bz * cx, bxcz = bx * cz, bxcy = bx * cy, bycx = by * cx;
   const double mx = bycz - bzcy, my = bzcx - bxcz, mz = bxcy - bycx;
   const double px_perm = std::fabs(bycz) + std::fabs(bzcy), py_perm = std::fabs(bzcx) + std::fabs(bxcz),
                pz_perm = std::fabs(bxcy) + std::fabs(bycx);
+  bool all = true;
   for (int i = 0; i < n; ++i) {
     const Vec3& q = *p[i];
     const double qx = q[0] - a[0], qy = q[1] - a[1], qz = q[2] - a[2];
     const double ax = std::fabs(qx), ay = std::fabs(qy), az = std::fabs(qz);
-    const int sign = certain_sign(qx * mx + qy * my + qz * mz, ax * px_perm + ay * py_perm + az * pz_perm,
-                                  std::max(ax, std::max(ay, az)));
-    out[i] = sign != 0 ? sign : orient3d_sign(a, b, c, q);
+    out[i] = certain_sign(qx * mx + qy * my + qz * mz, ax * px_perm + ay * py_perm + az * pz_perm,
+                          std::max(ax, std::max(ay, az)));
+    all = all && out[i] != 0;
   }
+  return all;
+}
+
+// The exact sign for every out[i] that orient3d_sides_filter left undecided.
+inline void orient3d_sides_settle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* const* p, int n,
+                                  int* out) {
+  for (int i = 0; i < n; ++i)
+    if (out[i] == 0) out[i] = orient3d_sign(a, b, c, *p[i]);
+}
+
+// out[i] = orient3d_filtered(a, b, c, *p[i]) for i < n, with the plane's minors shared.
+inline void orient3d_sides(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* const* p, int n, int* out) {
+  if (!orient3d_sides_filter(a, b, c, p, n, out)) orient3d_sides_settle(a, b, c, p, n, out);
 }
 
 }  // namespace detail
