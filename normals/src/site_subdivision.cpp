@@ -189,7 +189,7 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
     d = std::atan2(std::fabs(cf), norm(c - cf * f));
   } else {
     const bool at_end = dot(c, g_.arc_end(best)) > dot(c, g_.arc_start(best));
-    vertex = at_end ? (best + 1) % k_ : best;
+    vertex = at_end ? next_vertex(best) : best;
     d = angle_between(c, g_.dirs[vertex]);
   }
   double v = 2.0;
@@ -262,13 +262,13 @@ void SiteSubdivision::gather_sites(const Vec3& c, double rho, double cos_reach, 
   const double arc_reach = thr <= 0.0 ? -1.0 : (thr > 0.5 * M_PI ? 3.0 : std::sin(thr) - rho - kBoundMargin);
   for (int t = arcs_begin; t < arcs_end; ++t) {
     const int i = arena_[t];
-    for (int j : {i, (i + 1) % k_}) {
+    for (int j : {i, next_vertex(i)}) {
       if (vertex_stamp_[j] == stamp_) continue;
       vertex_stamp_[j] = stamp_;
       const double cu = dot(c, g_.dirs[j]);
       if (!(cu >= cos_reach)) continue;
       near_.push_back({cu, j});
-      if (s_.point_of_vertex[j] >= 0 && dot(c, lune2_[(j + k_ - 1) % k_]) <= wedge_reach &&
+      if (s_.point_of_vertex[j] >= 0 && dot(c, lune2_[previous_vertex(j)]) <= wedge_reach &&
           dot(c, lune1_[j]) <= wedge_reach)
         leaf_points_.push_back(s_.point_of_vertex[j]);
     }

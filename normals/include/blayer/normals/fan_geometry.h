@@ -11,6 +11,7 @@
 // and arc i runs on the great circle with normal f_i from dirs[i] to dirs[i+1 mod size].
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "blayer/core/tolerances.h"
@@ -30,7 +31,12 @@ struct FanGeometry {
 
   int n_faces() const { return static_cast<int>(face_normals.size()); }
   const Vec3& arc_start(int i) const { return dirs[i]; }
-  const Vec3& arc_end(int i) const { return dirs[(i + 1) % dirs.size()]; }
+  // i < n_faces(). The wrap is a comparison: a modulo by the runtime size is a division,
+  // and arc ends are read for every arc of every cell and candidate of a solve.
+  const Vec3& arc_end(int i) const {
+    const std::size_t j = static_cast<std::size_t>(i) + 1;
+    return dirs[j == dirs.size() ? 0 : j];
+  }
 };
 
 // Builds the fan geometry of vertex p with ring points `ring` (closed: triangles
