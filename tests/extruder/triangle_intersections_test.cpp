@@ -15,6 +15,12 @@ namespace {
 
 const Vec3 A{0, 0, 0}, B{1, 0, 0}, C{0, 1, 0};
 
+// The oracle for triangles (v, a, b) and (v, c, d) sharing corner v: they meet beyond v
+// iff an edge opposite v meets the other triangle.
+bool meet_beyond_corner(const Vec3& v, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return segment_intersects_triangle(a, b, v, c, d) || segment_intersects_triangle(c, d, v, a, b);
+}
+
 TEST(TriangleIntersections, SegmentThroughTheInteriorHits) {
   EXPECT_TRUE(segment_intersects_triangle({0.2, 0.2, -1}, {0.2, 0.2, 1}, A, B, C));
   EXPECT_FALSE(segment_intersects_triangle({0.8, 0.8, -1}, {0.8, 0.8, 1}, A, B, C));
@@ -124,8 +130,7 @@ TEST(TriangleIntersections, SharedVertexVerdictIsTheOppositeEdgeTests) {
       p[i] = t % 2 == 0 ? Vec3{grid(), grid(), grid() * (t % 4 == 0 ? 0.0 : 1.0)}
                         : Vec3{lcg.uniform() - 0.5, lcg.uniform() - 0.5, lcg.uniform() - 0.5};
     if (flat(p[0], p[1], p[2]) || flat(p[0], p[3], p[4])) continue;
-    const bool expected = segment_intersects_triangle(p[1], p[2], p[0], p[3], p[4]) ||
-                          segment_intersects_triangle(p[3], p[4], p[0], p[1], p[2]);
+    const bool expected = meet_beyond_corner(p[0], p[1], p[2], p[3], p[4]);
     // Ids 1-4 are distinct: the triangles share id 0 alone even where positions repeat.
     ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {0, 3, 4}), expected) << "pair " << t;
     (expected ? crossing : apart)++;
@@ -173,8 +178,7 @@ TEST(TriangleIntersections, NearlyFlatPairsGetTheVerdictOfTheEdgeTests) {
     (expected ? disjoint_hits : disjoint_misses)++;
     // The same corners with the first one shared (ids 0, 1, 2 and 0, 4, 5).
     if (flat(p[0], p[4], p[5])) continue;
-    const bool beyond = segment_intersects_triangle(p[1], p[2], p[0], p[4], p[5]) ||
-                        segment_intersects_triangle(p[4], p[5], p[0], p[1], p[2]);
+    const bool beyond = meet_beyond_corner(p[0], p[1], p[2], p[4], p[5]);
     ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {0, 4, 5}), beyond) << "shared corner, pair " << i;
     (beyond ? corner_hits : corner_misses)++;
   }
