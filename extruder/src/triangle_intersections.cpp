@@ -219,15 +219,21 @@ bool triangles_intersect(const Vec3* const* s, const Vec3* const* t) {
   // to 30 in the edge tests below, which decide the remaining pairs.
   // The edge tests reuse these sides of the edges' ends.
   // Where the filter cannot decide a side, the projections are tried before the exact
-  // predicate (projections_apart).
+  // predicate (projections_apart), once.
   int s_side[3], t_side[3];
+  bool projections_tried = false;
+  auto apart = [&]() {
+    if (projections_tried) return false;
+    projections_tried = true;
+    return projections_apart(s, t);
+  };
   if (!detail::orient3d_sides_filter(*t[0], *t[1], *t[2], s, 3, s_side)) {
-    if (projections_apart(s, t)) return false;
+    if (apart()) return false;
     detail::orient3d_sides_settle(*t[0], *t[1], *t[2], s, 3, s_side);
   }
   if (strictly_one_side(s_side[0], s_side[1], s_side[2])) return false;
   if (!detail::orient3d_sides_filter(*s[0], *s[1], *s[2], t, 3, t_side)) {
-    if (projections_apart(s, t)) return false;
+    if (apart()) return false;
     detail::orient3d_sides_settle(*s[0], *s[1], *s[2], t, 3, t_side);
   }
   if (strictly_one_side(t_side[0], t_side[1], t_side[2])) return false;
