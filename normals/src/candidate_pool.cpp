@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "blayer/core/cyclic_index.h"
+
 namespace blayer {
 namespace detail {
 
@@ -24,8 +26,8 @@ constexpr double kNearestCosineMargin = 1e-12;
 VertexTangents vertex_tangents(const FanGeometry& g, int j, const Vec3& n) {
   const int k = g.n_faces();
   const Vec3& w = g.dirs[j];
-  const Vec3& prev = g.dirs[j == 0 ? k - 1 : j - 1];  // j < k: wrapped without a division
-  const Vec3& next = g.dirs[j + 1 == k ? 0 : j + 1];
+  const Vec3& prev = g.dirs[cyclic_previous(j, k)];
+  const Vec3& next = g.dirs[cyclic_next(j, k)];
   VertexTangents t;
   t.t_in = prev - dot(prev, w) * w;
   t.t_out = next - dot(next, w) * w;
@@ -161,7 +163,7 @@ bool CandidatePool::evaluate(const Vec3& n, double thr, double* d_out, bool* flu
     *fluid = dot(n, g_.face_normals[feature_arc]) > 0.0;
     return true;
   }
-  *fluid = fluid_side_at_vertex(g_, feature_kind == 1 ? feature_arc : (feature_arc + 1 == k ? 0 : feature_arc + 1), n);
+  *fluid = fluid_side_at_vertex(g_, feature_kind == 1 ? feature_arc : cyclic_next(feature_arc, k), n);
   return true;
 }
 

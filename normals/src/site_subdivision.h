@@ -45,6 +45,7 @@
 #include <utility>
 #include <vector>
 
+#include "blayer/core/cyclic_index.h"
 #include "candidate_pool.h"
 #include "fan_sites.h"
 #include "recycled_vector.h"
@@ -119,10 +120,9 @@ class SiteSubdivision {
   const SubdivisionStats& stats() const { return stats_; }
 
  private:
-  // Link vertices around the closed fan, i < k_: wrapped by a comparison, where a modulo
-  // by the runtime k_ is a division in the per-cell loops.
-  int next_vertex(int i) const { return i + 1 == k_ ? 0 : i + 1; }
-  int previous_vertex(int i) const { return i == 0 ? k_ - 1 : i - 1; }
+  // Link vertices around the closed fan, i < k_.
+  int next_vertex(int i) const { return cyclic_next(i, k_); }
+  int previous_vertex(int i) const { return cyclic_previous(i, k_); }
   // A gnomonic chart: the direction of (x, y) is e0 + x e1 + y e2.
   struct Chart {
     Vec3 e0, e1, e2;

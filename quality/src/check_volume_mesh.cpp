@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "blayer/core/cyclic_index.h"
 #include "blayer/core/errors.h"
 #include "blayer/quality/cell_metrics.h"
 #include "blayer/quality/mesh_check.h"
@@ -68,10 +69,9 @@ FaceKey face_key(const VolumeMesh& mesh, std::int64_t cell, int face) {
     if (v[i] < v[lo]) lo = i;
   }
   std::array<std::int64_t, 4> fwd{-1, -1, -1, -1}, bwd{-1, -1, -1, -1};
-  // Indices wrapped by one comparison: a modulo by the runtime count costs a division.
   for (int i = 0; i < fd.n; ++i) {
-    fwd[i] = v[lo + i < fd.n ? lo + i : lo + i - fd.n];
-    bwd[i] = v[lo - i >= 0 ? lo - i : lo - i + fd.n];
+    fwd[i] = v[cyclic_wrap(lo + i, fd.n)];
+    bwd[i] = v[cyclic_wrap(lo - i, fd.n)];
   }
   k.reversed = bwd < fwd;
   k.cyclic = k.reversed ? bwd : fwd;

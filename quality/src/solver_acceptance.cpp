@@ -4,17 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "blayer/core/cyclic_index.h"
 #include "cell_faces.h"
 
 namespace blayer {
-
-namespace {
-
-// A face corner index below 2 n, wrapped to [0, n) by one comparison: a modulo by the
-// runtime count is a division, a measurable part of these per-face loops.
-int wrap(int i, int n) { return i < n ? i : i - n; }
-
-}  // namespace
 
 PolyFace reversed(const PolyFace& f) {
   PolyFace r = f;
@@ -63,8 +56,8 @@ bool tet_quality_above(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& 
 // fan's triangles (the neighbour's side of an internal face).
 bool fan_above(const PolyFace& f, int base, const Vec3& c, bool flip, double tol) {
   for (int k = 1; k < f.n - 1; ++k) {
-    const Vec3& a = f.p[wrap(base + k, f.n)];
-    const Vec3& b = f.p[wrap(base + k + 1, f.n)];
+    const Vec3& a = f.p[cyclic_wrap(base + k, f.n)];
+    const Vec3& b = f.p[cyclic_wrap(base + k + 1, f.n)];
     if (!(flip ? tet_quality_above(c, f.p[base], b, a, tol) : tet_quality_above(c, f.p[base], a, b, tol))) return false;
   }
   return true;
@@ -73,7 +66,7 @@ bool fan_above(const PolyFace& f, int base, const Vec3& c, bool flip, double tol
 // Every tet (c, Cf, p_i, p_i+1) of the fan about the face centre above tol.
 bool centre_fan_above(const PolyFace& f, const Vec3& face_centre, const Vec3& c, double tol) {
   for (int i = 0; i < f.n; ++i)
-    if (!tet_quality_above(c, face_centre, f.p[i], f.p[wrap(i + 1, f.n)], tol)) return false;
+    if (!tet_quality_above(c, face_centre, f.p[i], f.p[cyclic_next(i, f.n)], tol)) return false;
   return true;
 }
 
@@ -96,8 +89,8 @@ bool face_tets_above(const PolyFace& f, const FaceGeometry& g, const Vec3& own, 
 double fan_quality(const PolyFace& f, int base, const Vec3& c, bool flip) {
   double worst = std::numeric_limits<double>::infinity();
   for (int k = 1; k < f.n - 1; ++k) {
-    const Vec3& a = f.p[wrap(base + k, f.n)];
-    const Vec3& b = f.p[wrap(base + k + 1, f.n)];
+    const Vec3& a = f.p[cyclic_wrap(base + k, f.n)];
+    const Vec3& b = f.p[cyclic_wrap(base + k + 1, f.n)];
     const double q = flip ? tet_quality(c, f.p[base], b, a) : tet_quality(c, f.p[base], a, b);
     worst = std::min(worst, q);
   }
@@ -141,7 +134,7 @@ FaceGeometry face_geometry(const PolyFace& f) {
   double sum_a = 0.0;
   for (int i = 0; i < f.n; ++i) {
     const Vec3& p = f.p[i];
-    const Vec3& q = f.p[wrap(i + 1, f.n)];
+    const Vec3& q = f.p[cyclic_next(i, f.n)];
     const Vec3 n = cross(q - p, m - p);
     const double a = norm(n);
     sum_n += n;
@@ -206,7 +199,7 @@ double face_tet_quality(const PolyFace& f, const Vec3& own, const Vec3* nei) {
 
 double face_centre_tet_quality(const PolyFace& f, const FaceGeometry& g, const Vec3& centre) {
   double worst = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < f.n; ++i) worst = std::min(worst, tet_quality(centre, g.centre, f.p[i], f.p[wrap(i + 1, f.n)]));
+  for (int i = 0; i < f.n; ++i) worst = std::min(worst, tet_quality(centre, g.centre, f.p[i], f.p[cyclic_next(i, f.n)]));
   return worst;
 }
 
@@ -255,7 +248,7 @@ double face_flatness(const PolyFace& f, const FaceGeometry& g) {
   double sum = 0.0;
   for (int i = 0; i < f.n; ++i) {
     const Vec3& p = f.p[i];
-    const Vec3& q = f.p[wrap(i + 1, f.n)];
+    const Vec3& q = f.p[cyclic_next(i, f.n)];
     sum += 0.5 * norm(cross(q - p, g.centre - p));
   }
   return mag / (sum + kRootVSmall);

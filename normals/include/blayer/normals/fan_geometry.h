@@ -11,9 +11,9 @@
 // and arc i runs on the great circle with normal f_i from dirs[i] to dirs[i+1 mod size].
 #pragma once
 
-#include <cstddef>
 #include <vector>
 
+#include "blayer/core/cyclic_index.h"
 #include "blayer/core/tolerances.h"
 #include "blayer/core/vec3.h"
 
@@ -31,12 +31,8 @@ struct FanGeometry {
 
   int n_faces() const { return static_cast<int>(face_normals.size()); }
   const Vec3& arc_start(int i) const { return dirs[i]; }
-  // i < n_faces(). The wrap is a comparison: a modulo by the runtime size is a division,
-  // and arc ends are read for every arc of every cell and candidate of a solve.
-  const Vec3& arc_end(int i) const {
-    const std::size_t j = static_cast<std::size_t>(i) + 1;
-    return dirs[j == dirs.size() ? 0 : j];
-  }
+  // i < n_faces(); read for every arc of every cell and candidate of a solve.
+  const Vec3& arc_end(int i) const { return dirs[cyclic_next(i, static_cast<int>(dirs.size()))]; }
 };
 
 // Builds the fan geometry of vertex p with ring points `ring` (closed: triangles
