@@ -21,11 +21,20 @@ using Vec2 = std::array<double, 2>;
 constexpr int kNext[3] = {1, 2, 0};
 constexpr int kAfterNext[3] = {2, 0, 1};
 
-// Exact 2D orientation, obtained from the exact 3D predicate: lifting the points to
-// z = 0 and taking the apex (0,0,1) makes det[b-a, c-a, d-a] equal to the 2D
-// determinant, with no rounding in the lifted coordinates.
+// 2D orientations from the 3D predicates: lifting the points to z = 0 and taking the
+// apex (0,0,1) makes det[b-a, c-a, d-a] equal to the 2D determinant, with no rounding in
+// the lifted coordinates.
+Vec3 lifted(const Vec2& a) { return {a[0], a[1], 0.0}; }
+const Vec3 kApex{0.0, 0.0, 1.0};
+
+// Exact.
 int orient2d(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return detail::orient3d_filtered({a[0], a[1], 0.0}, {b[0], b[1], 0.0}, {c[0], c[1], 0.0}, {0.0, 0.0, 1.0});
+  return detail::orient3d_filtered(lifted(a), lifted(b), lifted(c), kApex);
+}
+
+// Where the floating-point filter certifies the sign, else 0 ("cannot decide").
+int orient2d_filter(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return detail::orient3d_filter(lifted(a), lifted(b), lifted(c), kApex);
 }
 
 // c lies on the closed segment ab, given that a, b, c are collinear.
@@ -79,31 +88,34 @@ bool coplanar_same_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
   return orient2d(A, B, C) * orient2d(A, B, D) > 0;
 }
 
-// Coplanar triangles (v, sa, sb) and (v, ta, tb) sharing only v, in the projection that
-// drops the dominant axis of the first's normal: near v each fills its angle at v, and
-// each lies inside that angle, so they share a point other than v iff the two closed
-// angles share a ray, i.e. iff a side ray of one lies in the other. A ray v x lies in the
-// closed angle (v; a, b) of orientation o iff o * orient(v, a, x) >= 0 and
-// o * orient(v, x, b) >= 0: the ray opposite a side fails the other test. Returns false
-// in *decided when either projection is flat (a triangle of zero area: its sides were
-// zero without the two being coplanar), for the edge tests to decide.
-bool coplanar_corner_angles_meet(const Vec3& v, const Vec3& sa, const Vec3& sb, const Vec3& ta, const Vec3& tb,
-                                 bool* decided) {
+// Triangles (v, sa, sb) and (v, ta, tb) sharing only v, in the projection that drops
+// the dominant axis of the first's normal, with orientation predicate `orient`. When
+// the two are coplanar, near v each fills its angle at v and lies inside it, so they
+// share a point other than v iff the two closed angles share a ray, i.e. iff a side ray
+// of one lies in the other. A ray v x lies in the closed angle (v; a, b) of orientation o
+// iff o * orient(v, a, x) >= 0 and o * orient(v, x, b) >= 0: the ray opposite a side
+// fails the other test. Returns false in *decided when either projection is flat (a
+// triangle of zero area: its sides were zero without the two being coplanar), for the
+// edge tests to decide. With orient2d_filter, whose 0 means "cannot decide", an
+// undecided sign counts as flat or as inside: "decided and not meeting" stays certain.
+template <class Orient>
+bool corner_angles_meet(Orient&& orient, const Vec3& v, const Vec3& sa, const Vec3& sb, const Vec3& ta,
+                        const Vec3& tb, bool* decided) {
   int i, j;
   projection_axes(v, sa, sb, &i, &j);
   const Vec2 V{v[i], v[j]}, SA{sa[i], sa[j]}, SB{sb[i], sb[j]}, TA{ta[i], ta[j]}, TB{tb[i], tb[j]};
-  const int os = orient2d(V, SA, SB), ot = orient2d(V, TA, TB);
+  const int os = orient(V, SA, SB), ot = orient(V, TA, TB);
   *decided = os != 0 && ot != 0;
   if (!*decided) return false;
   auto in_angle = [&](const Vec2& a, const Vec2& b, int o, const Vec2& x) {
-    return o * orient2d(V, a, x) >= 0 && o * orient2d(V, x, b) >= 0;
+    return o * orient(V, a, x) >= 0 && o * orient(V, x, b) >= 0;
   };
   return in_angle(SA, SB, os, TA) || in_angle(SA, SB, os, TB) || in_angle(TA, TB, ot, SA) || in_angle(TA, TB, ot, SB);
 }
 
-// orient2d where the floating-point filter certifies the sign, else 0 ("cannot decide").
-int orient2d_filter(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return detail::orient3d_filter({a[0], a[1], 0.0}, {b[0], b[1], 0.0}, {c[0], c[1], 0.0}, {0.0, 0.0, 1.0});
+bool coplanar_corner_angles_meet(const Vec3& v, const Vec3& sa, const Vec3& sb, const Vec3& ta, const Vec3& tb,
+                                 bool* decided) {
+  return corner_angles_meet(orient2d, v, sa, sb, ta, tb, decided);
 }
 
 // Certificates of disjointness for the pairs whose plane tests the filter cannot decide:
@@ -144,17 +156,9 @@ bool projections_apart(const Vec3* const* s, const Vec3* const* t) {
 // to the dropped axis; the first triangle holds no such segment, its normal having a
 // non-zero component along that axis (its projection has area).
 bool corner_angles_apart(const Vec3& v, const Vec3& sa, const Vec3& sb, const Vec3& ta, const Vec3& tb) {
-  int i, j;
-  projection_axes(v, sa, sb, &i, &j);
-  const Vec2 V{v[i], v[j]}, SA{sa[i], sa[j]}, SB{sb[i], sb[j]}, TA{ta[i], ta[j]}, TB{tb[i], tb[j]};
-  const int os = orient2d_filter(V, SA, SB), ot = orient2d_filter(V, TA, TB);
-  if (os == 0 || ot == 0) return false;
-  // The ray V x leaves the closed angle (V; a, b) of orientation o when x is strictly on
-  // the wrong side of either of its sides.
-  auto outside = [&](const Vec2& a, const Vec2& b, int o, const Vec2& x) {
-    return o * orient2d_filter(V, a, x) < 0 || o * orient2d_filter(V, x, b) < 0;
-  };
-  return outside(SA, SB, os, TA) && outside(SA, SB, os, TB) && outside(TA, TB, ot, SA) && outside(TA, TB, ot, SB);
+  bool decided;
+  const bool meet = corner_angles_meet(orient2d_filter, v, sa, sb, ta, tb, &decided);
+  return decided && !meet;
 }
 
 // segment_intersects_triangle given the orientations of p and q against the plane abc.
