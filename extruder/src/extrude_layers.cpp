@@ -106,7 +106,10 @@ std::vector<int> failed_fan_points(const ColumnLayout& layout, const std::vector
 // Fan points that fall back to one column, found by a marching run that then stops
 // without a mesh: before marching, by the straight-layer precheck; after layer 0, those
 // of failed_fan_points (only when asked to stop there, i.e. another attempt follows).
+// last_precheck_round (set by the caller): a failing precheck sends every fan point
+// back, so the precheck only needs to find one.
 struct FanFailures {
+  bool last_precheck_round = false;
   std::vector<int> precheck, first_layer;
 };
 
@@ -149,7 +152,8 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
                           &topo.on_plane));
   if (precheck) {
     if (layout.has_fans()) {
-      fan_failures->precheck = precheck->failing_points(wall, layout, planes, dirs, plan, params);
+      fan_failures->precheck =
+          precheck->failing_points(wall, layout, planes, dirs, plan, params, fan_failures->last_precheck_round);
       if (!fan_failures->precheck.empty()) return res;
     }
     precheck->release();  // this attempt marches: its records would only add to the peak
@@ -289,6 +293,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     // layouts and the attempts whose fan points fell back.
     const double t_before = total.seconds();
     FanFailures failures;
+    failures.last_precheck_round = precheck_rounds + 1 >= kMaxPrecheckRounds;
     const bool last_attempt = attempt + 1 >= kMaxFanAttempts;
     ExtrusionResult res =
         march(wall, wall_topo, shared_layout, column_topo, params, progress, !last_attempt, &wall_tree,

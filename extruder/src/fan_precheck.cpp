@@ -80,7 +80,6 @@ FanPrecheck::Round FanPrecheck::round_of(const TriSurface& wall, const ColumnLay
     }
     r.by_hash[c] = {hash_words(r.runs.data() + r.run_start[c], r.run_start[c + 1] - r.run_start[c]), c};
   });
-  std::sort(r.by_hash.begin(), r.by_hash.end());
   return r;
 }
 
@@ -121,7 +120,8 @@ std::vector<signed char> FanPrecheck::passed_before(const ColumnLayout& layout, 
 
 std::vector<int> FanPrecheck::failing_points(const TriSurface& wall, const ColumnLayout& layout,
                                              const WallPlanes& planes, const StepDirections& dirs,
-                                             const ColumnPlan& plan, const ExtrusionParams& params) {
+                                             const ColumnPlan& plan, const ExtrusionParams& params,
+                                             bool last_round) {
   const int nv = static_cast<int>(wall.points.size()), nc = layout.n_columns();
   const std::size_t n_wall_elements = wall.triangles.size();
   std::vector<std::size_t> checked;
@@ -141,6 +141,12 @@ std::vector<int> FanPrecheck::failing_points(const TriSurface& wall, const Colum
   // A fan column without a usable direction stops on the wall, and its fan with it.
   for (int c = 0; c < nc; ++c)
     if (layout.in_fan[c] && !dirs.ok[c]) failed[layout.wall_point[c]] = 1;
+  auto failing = [&] {
+    std::vector<int> out;
+    for (int w = 0; w < nv; ++w)
+      if (failed[w]) out.push_back(w);
+    return out;
+  };
   // Column tops: ids nv + c (the layer's base) and nv + nc + c (one layer up).
   std::vector<Vec3> base(nc), up(nc);
   for (int c = 0; c < nc; ++c) base[c] = wall.points[layout.wall_point[c]];
@@ -183,22 +189,27 @@ std::vector<int> FanPrecheck::failing_points(const TriSurface& wall, const Colum
         }
       }
     });
+    bool any_failed = false;
     for (std::size_t x = 0; x < checked.size(); ++x) {
       if (!bad[x]) continue;
+      any_failed = true;
       const LayerElement& e = layout.elements[checked[x]];
       for (int j = 0; j < e.n_columns(); ++j)
         if (layout.in_fan[e.column[j]]) failed[layout.wall_point[e.column[j]]] = 1;
     }
+    if (any_failed && last_round) return failing();
     for (int c = 0; c < nc; ++c)
       if (grows[c]) base[c] = up[c];
   }
+  std::vector<int> out = failing();
+  // Only a failing round is followed by another (a passing one marches, and release()
+  // drops the records), so a passing round keeps none.
+  if (out.empty() || last_round) return out;
+  std::sort(current.by_hash.begin(), current.by_hash.end());
   for (std::size_t x = 0; x < checked.size(); ++x)
     if (passed[x] >= 0) current.passed.push_back(key_of(layout.elements[checked[x]], nullptr));
   std::sort(current.passed.begin(), current.passed.end());
   previous_ = std::move(current);
-  std::vector<int> out;
-  for (int w = 0; w < nv; ++w)
-    if (failed[w]) out.push_back(w);
   return out;
 }
 

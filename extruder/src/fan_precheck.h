@@ -9,7 +9,9 @@
 // function of a cell's corners, so an element whose columns all run through bitwise the
 // same points as an element that passed every layer in the previous round (same kind,
 // same split, the same columns in the same order) passes again without being rebuilt:
-// the failing set is the one a full check finds. Internal to blayer_extruder.
+// the failing set is the one a full check finds. Only a failing round is followed by
+// another, so only a failing round keeps its records for the next. Internal to
+// blayer_extruder.
 #pragma once
 
 #include <cstddef>
@@ -31,8 +33,12 @@ class FanPrecheck {
   // The wall points (ascending) of the fan points of `layout` whose cells fail on
   // straight columns along dirs at plan's heights, each column's step stretched to its
   // height above the wall planes (capped at params.max_step_stretch).
+  // last_round: the caller needs only to know whether any fan point fails (all of them
+  // fall back then); the check stops after the first layer where one does, returning
+  // the points failed so far, and keeps no records.
   std::vector<int> failing_points(const TriSurface& wall, const ColumnLayout& layout, const WallPlanes& planes,
-                                  const StepDirections& dirs, const ColumnPlan& plan, const ExtrusionParams& params);
+                                  const StepDirections& dirs, const ColumnPlan& plan, const ExtrusionParams& params,
+                                  bool last_round = false);
   // Frees the previous round's records (once the fans passed, before marching).
   void release();
   // Elements of the last round that passed as the previous round's (diagnostics, tests).
@@ -51,7 +57,7 @@ class FanPrecheck {
   struct Round {
     std::vector<std::uint64_t> runs;                        // the trajectories, concatenated
     std::vector<std::size_t> run_start;                     // per column, with a final end
-    std::vector<std::pair<std::uint64_t, int>> by_hash;     // (hash, column), sorted
+    std::vector<std::pair<std::uint64_t, int>> by_hash;     // (hash, column), sorted once kept
     std::vector<ElementKey> passed;                         // sorted
     // A column of this round with trajectory [t, t + n), or -1.
     int find(const std::uint64_t* t, std::size_t n, std::uint64_t hash) const;

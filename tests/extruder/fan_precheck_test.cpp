@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "blayer/core/vertex_fans.h"
@@ -67,18 +68,20 @@ TEST(FanPrecheck, ReusedPassesGiveTheFailingSetOfAFreshCheck) {
   turned.n[victim] = Vec3{0.0, 0.0, -1.0};
 
   FanPrecheck rounds;
-  const std::vector<int> first = rounds.failing_points(b.box, b.layout, b.planes, straight, b.plan, b.params);
-  EXPECT_TRUE(first.empty()) << "a convex box's fans pass on straight columns";
+  const std::vector<int> first = rounds.failing_points(b.box, b.layout, b.planes, turned, b.plan, b.params);
+  EXPECT_FALSE(first.empty());
+  EXPECT_EQ(first, b.fresh(turned));
   EXPECT_EQ(rounds.reused_elements(), 0u);
 
-  const std::vector<int> second = rounds.failing_points(b.box, b.layout, b.planes, turned, b.plan, b.params);
-  EXPECT_FALSE(second.empty());
-  EXPECT_EQ(second, b.fresh(turned));
+  const std::vector<int> second = rounds.failing_points(b.box, b.layout, b.planes, straight, b.plan, b.params);
+  EXPECT_TRUE(second.empty()) << "a convex box's fans pass on straight columns";
+  EXPECT_EQ(second, b.fresh(straight));
   EXPECT_GT(rounds.reused_elements(), 0u) << "the elements away from the turned column are the first round's";
 
-  const std::vector<int> third = rounds.failing_points(b.box, b.layout, b.planes, straight, b.plan, b.params);
-  EXPECT_EQ(third, b.fresh(straight));
-  EXPECT_TRUE(third.empty());
+  // A passing round marches next: it keeps nothing for another round.
+  const std::vector<int> third = rounds.failing_points(b.box, b.layout, b.planes, turned, b.plan, b.params);
+  EXPECT_EQ(rounds.reused_elements(), 0u);
+  EXPECT_EQ(third, b.fresh(turned));
 
   // Taller layers: the same columns through other points, nothing is reused.
   BoxWithFans tall;
@@ -87,6 +90,32 @@ TEST(FanPrecheck, ReusedPassesGiveTheFailingSetOfAFreshCheck) {
       rounds.failing_points(tall.box, tall.layout, tall.planes, turned, tall.plan, tall.params);
   EXPECT_EQ(rounds.reused_elements(), 0u);
   EXPECT_EQ(fourth, tall.fresh(turned));
+}
+
+TEST(FanPrecheck, LastRoundFindsAFailureWhereAFullCheckDoesAndKeepsNothing) {
+  const BoxWithFans b;
+  const StepDirections straight = b.directions();
+  StepDirections turned = straight;
+  // Every column of the top face turned into the solid: all its fans fail in layer 0.
+  for (int c = 0; c < b.layout.n_columns(); ++c)
+    if (b.layout.front.points[c][2] == 1.0) turned.n[c] = Vec3{0.0, 0.0, -1.0};
+  const std::vector<int> full = b.fresh(turned);
+  ASSERT_FALSE(full.empty());
+
+  FanPrecheck rounds;
+  const std::vector<int> last = rounds.failing_points(b.box, b.layout, b.planes, turned, b.plan, b.params, true);
+  ASSERT_FALSE(last.empty());
+  for (int w : last) EXPECT_TRUE(std::binary_search(full.begin(), full.end(), w)) << "point " << w;
+  // The failing last round kept no records: the next round reuses nothing (after a
+  // failing round that is not the last, it reuses the elements away from the top face).
+  EXPECT_TRUE(rounds.failing_points(b.box, b.layout, b.planes, straight, b.plan, b.params).empty());
+  EXPECT_EQ(rounds.reused_elements(), 0u);
+  FanPrecheck not_last;
+  not_last.failing_points(b.box, b.layout, b.planes, turned, b.plan, b.params);
+  not_last.failing_points(b.box, b.layout, b.planes, straight, b.plan, b.params);
+  EXPECT_GT(not_last.reused_elements(), 0u);
+
+  EXPECT_TRUE(rounds.failing_points(b.box, b.layout, b.planes, straight, b.plan, b.params, true).empty());
 }
 
 }  // namespace
