@@ -1,7 +1,9 @@
 #include "blayer/extruder/column_heights.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstring>
 
 #include "blayer/extruder/height_smoothing.h"
 #include "parallel.h"
@@ -10,19 +12,60 @@ namespace blayer {
 
 namespace {
 
+bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof a) == 0; }
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The gap of a ray from wall point w found in the memo, or NaN.
+double remembered_gap(const WallGapMemo& memo, int w, const WallGapMemo::Ray& ray) {
+  if (w + 1 >= static_cast<int>(memo.start.size())) return std::nan("");
+  for (int i = memo.start[w]; i < memo.start[w + 1]; ++i) {
+    const WallGapMemo::Ray& r = memo.rays[i];
+    if (same_bits(r.dir, ray.dir) && same_bits(r.reach, ray.reach) && r.on_plane == ray.on_plane) return r.gap;
+  }
+  return std::nan("");
+}
+
+// The memo of this plan's rays (ray[v], for the columns with a direction).
+void remember_rays(const WallTopology& topo, const StepDirections& d, const std::vector<WallGapMemo::Ray>& ray,
+                   int n_wall_points, WallGapMemo* memo) {
+  memo->start.assign(static_cast<std::size_t>(n_wall_points) + 1, 0);
+  for (int v = 0; v < topo.n_points(); ++v)
+    if (d.ok[v]) ++memo->start[topo.wall_point[v] + 1];
+  for (int w = 0; w < n_wall_points; ++w) memo->start[w + 1] += memo->start[w];
+  memo->rays.resize(memo->start[n_wall_points]);
+  std::vector<int> fill(memo->start.begin(), memo->start.end() - 1);
+  for (int v = 0; v < topo.n_points(); ++v)
+    if (d.ok[v]) memo->rays[fill[topo.wall_point[v]]++] = ray[v];
+}
+
 // Fraction of each column's target total that the wall gap allows (1: no limit).
 std::vector<double> wall_gap_fractions(const WallTopology& topo, const ColumnPlan& plan, const ExtrusionParams& p,
                                        const StepDirections& d, const ProximityRays& rays,
-                                       const std::vector<Vec3>& wall_points) {
+                                       const std::vector<Vec3>& wall_points, WallGapMemo* memo) {
   const std::vector<int>& w = topo.wall_point;
   std::vector<double> fraction(topo.n_points(), 1.0);
+  std::vector<WallGapMemo::Ray> ray(memo ? topo.n_points() : 0);
+  std::atomic<long> reused{0};
   parallel_vertices(topo.n_points(), [&](int v) {
     if (!d.ok[v]) return;
     const double vis = std::max(d.visibility[v], 1.0 / p.max_step_stretch);
     const double path = plan.target_total[v] / vis;
-    const double gap = rays.first_hit(v, wall_points[w[v]], d.n[v], path / p.proximity_safety);
+    const double reach = path / p.proximity_safety;
+    double gap = std::nan("");
+    if (memo) {
+      const WallGapMemo::Ray key{d.n[v], reach, rays.on_plane && (*rays.on_plane)[v], 0.0};
+      gap = remembered_gap(*memo, w[v], key);
+      if (gap == gap) reused.fetch_add(1, std::memory_order_relaxed);
+      ray[v] = key;
+    }
+    if (gap != gap) gap = rays.first_hit(v, wall_points[w[v]], d.n[v], reach);
+    if (memo) ray[v].gap = gap;
     if (gap < HUGE_VAL) fraction[v] = std::min(1.0, p.proximity_safety * gap * vis / plan.target_total[v]);
   });
+  if (memo) {
+    memo->reused += reused.load();
+    remember_rays(topo, d, ray, static_cast<int>(wall_points.size()), memo);
+  }
   return fraction;
 }
 
@@ -74,7 +117,8 @@ EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo) 
 
 ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& wall_topo, const WallTopology& topo,
                                const ResolvedGrowthLaw& law, const ExtrusionParams& p,
-                               const StepDirections& wall_directions, const ProximityRays& wall_rays) {
+                               const StepDirections& wall_directions, const ProximityRays& wall_rays,
+                               WallGapMemo* gap_memo) {
   const int nv = topo.n_points();
   // The wall's own spacing at each column's wall point (a fan's columns share it).
   const EdgeLengths at_point = wall_edge_lengths(wall, wall_topo);
@@ -86,7 +130,8 @@ ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& wall_
     edges.shortest[v] = at_point.shortest[topo.wall_point[v]];
   }
   ColumnPlan plan = plan_columns(law, law.relative ? edges.mean : std::vector<double>(nv, 1.0));
-  std::vector<double> fraction = wall_gap_fractions(topo, plan, p, wall_directions, wall_rays, wall.points);
+  std::vector<double> fraction =
+      wall_gap_fractions(topo, plan, p, wall_directions, wall_rays, wall.points, gap_memo);
   std::vector<StopReason> reason(nv, StopReason::kWallGap);
   smooth_downward(topo.vertex_neighbours, topo.used, p.height_smoothing_rings, &fraction, &reason);
   for (int v = 0; v < nv; ++v) {

@@ -119,14 +119,16 @@ struct FanFailures {
 // wall_tree: the run's, built once for all attempts; freed here when the march
 // delivers its mesh, before the output arrays that set the peak memory. precheck: the
 // run's, which carries each round's verdicts to the next (fan_precheck.h). normal_memo:
-// the run's wall normals of the earlier attempts (step_directions.h), or null.
+// the run's wall normals of the earlier attempts (step_directions.h), or null; gap_memo:
+// the wall-gap rays of the previous precheck round (column_heights.h), dropped when the
+// attempt marches, or null.
 // shared_layout: the attempt's layout, which the checker reads without a copy.
 ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
                       const std::shared_ptr<const ColumnLayout>& shared_layout,
                       const WallTopology& topo, const ExtrusionParams& params,
                       const std::function<void(int, int)>& progress, bool stop_at_failed_fans,
                       std::unique_ptr<WallTree>* wall_tree, FanPrecheck* precheck, FanFailures* fan_failures,
-                      WallNormalMemo* normal_memo) {
+                      WallNormalMemo* normal_memo, WallGapMemo* gap_memo) {
   const ColumnLayout& layout = *shared_layout;
   const Stopwatch total;
   ExtrusionResult res;
@@ -149,7 +151,8 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
   ColumnPlan plan = plan_column_heights(
       wall, wall_topo, topo, rep.growth, params, dirs,
       wall_proximity_rays(wall.triangles, wall.points, **wall_tree, &start.triangles, &layout.wall_point, topo.plane,
-                          &topo.on_plane));
+                          &topo.on_plane),
+      gap_memo);
   if (precheck) {
     if (layout.has_fans()) {
       fan_failures->precheck =
@@ -158,6 +161,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
     }
     precheck->release();  // this attempt marches: its records would only add to the peak
   }
+  if (gap_memo) *gap_memo = WallGapMemo{};  // likewise
   FrontChecker checker(wall, shared_layout, topo, params, wall_tree->get());
   ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
   LayerAssembler assembler(wall, layout, dirs);
@@ -271,7 +275,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     const double t_before = total.seconds();
     ExtrusionResult res =
         march(wall, wall_topo, std::make_shared<const ColumnLayout>(single_column_layout(wall)), wall_topo, params,
-              progress, false, &wall_tree, nullptr, &none, nullptr);
+              progress, false, &wall_tree, nullptr, &none, nullptr, nullptr);
     res.report.t_setup += t_before;
     res.report.t_total = total.seconds();
     return res;
@@ -283,6 +287,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   int n_fallback = 0, precheck_rounds = 0;
   FanPrecheck fan_precheck;
   WallNormalMemo normal_memo;
+  WallGapMemo gap_memo;
   for (int attempt = 0;; ++attempt) {
     // Shared with the march's checker, which reads it to the end.
     const auto shared_layout = std::make_shared<const ColumnLayout>(
@@ -297,7 +302,7 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
     const bool last_attempt = attempt + 1 >= kMaxFanAttempts;
     ExtrusionResult res =
         march(wall, wall_topo, shared_layout, column_topo, params, progress, !last_attempt, &wall_tree,
-              &fan_precheck, &failures, &normal_memo);
+              &fan_precheck, &failures, &normal_memo, &gap_memo);
     std::vector<int>& precheck = failures.precheck;
     if (!precheck.empty()) {
       // Each round rebuilds the layout and its directions: when most fans fail, or

@@ -103,6 +103,39 @@ TEST(ColumnHeights, WallGapFitsColumnsFacingAnotherWallIntoTheSafetyShare) {
   EXPECT_NEAR(plan.remaining(centre, 0), p.proximity_safety * gap, 1e-12);
 }
 
+// The plan's rays against the previous attempt's: a column whose ray is the same takes
+// the remembered gap, one whose direction changed casts its own, and the plan is the one
+// computed without a memo either way.
+TEST(ColumnHeights, RememberedWallGapsGiveThePlanOfFreshRays) {
+  const TriSurface wall = facing_plates(1.0);
+  const WallTopology topo = build_wall_topology(wall);
+  ExtrusionParams p = test::growth_params(4, 0.05, 2.0);
+  p.height_smoothing_rings = 0;  // the centre's own gap decides its limit
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  FrontChecker checker(wall, build_wall_topology(wall), true);
+  auto same_plan = [](const ColumnPlan& a, const ColumnPlan& b) {
+    return a.planned_layers == b.planned_layers && a.limit == b.limit && a.target_total == b.target_total &&
+           a.heights == b.heights;
+  };
+  WallGapMemo memo;
+  const ColumnPlan first = plan_column_heights(wall, topo, topo, law, p, d, checker.wall_rays(), &memo);
+  EXPECT_EQ(memo.reused, 0);
+  EXPECT_TRUE(same_plan(first, plan_column_heights(wall, topo, topo, law, p, d, checker.wall_rays())));
+
+  // The centre column of the lower plate turned away from the upper one: its gap is
+  // cast again and differs (no wall ahead), the others are remembered.
+  const int centre = 2 * 5 + 2;
+  StepDirections tilted = d;
+  tilted.n[centre] = normalized(Vec3{1.0, 0.0, 0.05});
+  const ColumnPlan second = plan_column_heights(wall, topo, topo, law, p, tilted, checker.wall_rays(), &memo);
+  const long ok = std::count(d.ok.begin(), d.ok.end(), 1);
+  EXPECT_EQ(memo.reused, ok - 1);
+  EXPECT_TRUE(same_plan(second, plan_column_heights(wall, topo, topo, law, p, tilted, checker.wall_rays())));
+  EXPECT_EQ(first.limit[centre], StopReason::kWallGap);
+  EXPECT_NE(second.limit[centre], StopReason::kWallGap);
+}
+
 TEST(ColumnPlan, CompressionSolvesTheLargestRatioThatFits) {
   ResolvedGrowthLaw law = resolve_growth_law(GrowthLaw{5, 1.0, 2.0, 0.0, 0.0, false});  // 1 2 4 8 16
   ColumnPlan plan = plan_columns(law, {1.0});

@@ -22,6 +22,23 @@ struct EdgeLengths {
 };
 EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo);
 
+// The wall-gap rays of a run's previous attempt (extrude_layers.cpp plans again after
+// fan points fall back), grouped by wall point. A wall-gap ray is a pure function of its
+// column's wall point, direction, reach and whether the column is on the symmetry plane,
+// so a column whose ray is bitwise one of the previous attempt's takes its gap: most
+// columns keep their directions from one fan round to the next.
+struct WallGapMemo {
+  struct Ray {
+    Vec3 dir;
+    double reach = 0.0;
+    bool on_plane = false;
+    double gap = 0.0;
+  };
+  std::vector<int> start;  // per wall point, with a final end: its rays in rays[start[w], start[w + 1])
+  std::vector<Ray> rays;
+  long reused = 0;  // gaps taken from the memo, over the run
+};
+
 // The plan before marching:
 //   law        h_k x base (base: 1, or the mean wall edge length at v when relative);
 //   wall gap   a column may cover at most proximity_safety of the distance, along its
@@ -38,9 +55,11 @@ EdgeLengths wall_edge_lengths(const TriSurface& wall, const WallTopology& topo);
 // A fan point's columns (topo.group_columns) all plan the layers of the shortest of
 // them: they grow together.
 // wall_topo: the wall's own tables (build_wall_topology(wall)); topo: the columns'
-// (wall_topo itself, or a layout's build_column_topology).
+// (wall_topo itself, or a layout's build_column_topology). gap_memo (optional): the
+// previous attempt's rays, replaced by this plan's.
 ColumnPlan plan_column_heights(const TriSurface& wall, const WallTopology& wall_topo, const WallTopology& topo,
                                const ResolvedGrowthLaw& law, const ExtrusionParams& p,
-                               const StepDirections& wall_directions, const ProximityRays& wall_rays);
+                               const StepDirections& wall_directions, const ProximityRays& wall_rays,
+                               WallGapMemo* gap_memo = nullptr);
 
 }  // namespace blayer
