@@ -161,6 +161,22 @@ bool corner_angles_apart(const Vec3& v, const Vec3& sa, const Vec3& sb, const Ve
   return decided && !meet;
 }
 
+// The sides of *p[0..n) against the plane abc, as orient3d_sides gives them, except
+// where the filter cannot decide one: a disjointness certificate is asked first, once
+// per pair (*tried records it). True when the certificate holds: the pair is disjoint
+// and `side` is left unsettled.
+template <class Certificate>
+bool sides_or_certified_apart(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* const* p, int n, int* side,
+                              bool* tried, Certificate&& certified_apart) {
+  if (detail::orient3d_sides_filter(a, b, c, p, n, side)) return false;
+  if (!*tried) {
+    *tried = true;
+    if (certified_apart()) return true;
+  }
+  detail::orient3d_sides_settle(a, b, c, p, n, side);
+  return false;
+}
+
 // segment_intersects_triangle given the orientations of p and q against the plane abc.
 bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c,
                             const int* side);
@@ -225,21 +241,11 @@ bool triangles_intersect(const Vec3* const* s, const Vec3* const* t) {
   // Where the filter cannot decide a side, the projections are tried before the exact
   // predicate (projections_apart), once.
   int s_side[3], t_side[3];
-  bool projections_tried = false;
-  auto apart = [&]() {
-    if (projections_tried) return false;
-    projections_tried = true;
-    return projections_apart(s, t);
-  };
-  if (!detail::orient3d_sides_filter(*t[0], *t[1], *t[2], s, 3, s_side)) {
-    if (apart()) return false;
-    detail::orient3d_sides_settle(*t[0], *t[1], *t[2], s, 3, s_side);
-  }
+  bool tried = false;
+  auto apart = [&] { return projections_apart(s, t); };
+  if (sides_or_certified_apart(*t[0], *t[1], *t[2], s, 3, s_side, &tried, apart)) return false;
   if (strictly_one_side(s_side[0], s_side[1], s_side[2])) return false;
-  if (!detail::orient3d_sides_filter(*s[0], *s[1], *s[2], t, 3, t_side)) {
-    if (apart()) return false;
-    detail::orient3d_sides_settle(*s[0], *s[1], *s[2], t, 3, t_side);
-  }
+  if (sides_or_certified_apart(*s[0], *s[1], *s[2], t, 3, t_side, &tried, apart)) return false;
   if (strictly_one_side(t_side[0], t_side[1], t_side[2])) return false;
   if (no_zero(s_side) && no_zero(t_side)) return crossing_triangles_meet(s, t, s_side, t_side);
   for (int k = 0; k < 3; ++k) {
@@ -315,21 +321,11 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
     // Where the filter cannot decide a side, the angles at v in the projection are tried
     // before the exact predicate (corner_angles_apart), once.
     int s_side[2], t_side[2];
-    bool angles_tried = false;
-    auto angles_apart = [&]() {
-      if (angles_tried) return false;
-      angles_tried = true;
-      return corner_angles_apart(v, sa, sb, ta, tb);
-    };
-    if (!detail::orient3d_sides_filter(v, ta, tb, s_far, 2, s_side)) {
-      if (angles_apart()) return false;
-      detail::orient3d_sides_settle(v, ta, tb, s_far, 2, s_side);
-    }
+    bool tried = false;
+    auto apart = [&] { return corner_angles_apart(v, sa, sb, ta, tb); };
+    if (sides_or_certified_apart(v, ta, tb, s_far, 2, s_side, &tried, apart)) return false;
     if (s_side[0] * s_side[1] > 0) return false;
-    if (!detail::orient3d_sides_filter(v, sa, sb, t_far, 2, t_side)) {
-      if (angles_apart()) return false;
-      detail::orient3d_sides_settle(v, sa, sb, t_far, 2, t_side);
-    }
+    if (sides_or_certified_apart(v, sa, sb, t_far, 2, t_side, &tried, apart)) return false;
     if (t_side[0] * t_side[1] > 0) return false;
     if (s_side[0] * s_side[1] < 0 && t_side[0] * t_side[1] < 0) return crossing_at_shared_corner(v, sa, sb, ta, tb);
     if (s_side[0] == 0 && s_side[1] == 0 && t_side[0] == 0 && t_side[1] == 0) {
