@@ -65,6 +65,10 @@ class CandidatePool {
   // From now on only candidates meeting the visibility constraint count (the pass over
   // the constraint circles).
   void begin_constrained_pass() { constrained_pass_ = true; }
+  // Back to the unconstrained pass: infeasible candidates count again towards the
+  // unconstrained optimum (cells set aside before the constraint circles were searched,
+  // site_subdivision.h).
+  void end_constrained_pass() { constrained_pass_ = false; }
 
   // Exact D at unit n (radians) unless some arc is closer than thr (then false), and
   // whether n is on the fluid side of its nearest link feature.

@@ -247,21 +247,20 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
   } else {
     subdivision().unconstrained_candidates();
   }
-  // Plateaus first: their feasible part may reach the unconstrained optimum.
-  const bool non_unique = pool->unconstrained_maxima_distinct() || pool->constrained_maxima_distinct();
-  if (non_unique) {
-    if (subdivided) {
-      subdivision().plateau_peaks();
-    } else {
-      detail::enumerate_plateau_peaks(sites, pool);
+  bool non_unique;
+  if (subdivided) {
+    non_unique = subdivision().remaining_passes();
+  } else {
+    // Plateaus first: their feasible part may reach the unconstrained optimum.
+    non_unique = pool->unconstrained_maxima_distinct() || pool->constrained_maxima_distinct();
+    if (non_unique) detail::enumerate_plateau_peaks(sites, pool);
+    if (pool->limited()) {
+      // The constraint circles are searched leaf by leaf: a small fan gets its leaves now,
+      // without their candidates, which the enumeration offered already (re-offering them
+      // cost a quarter of a constrained valence-4 solve on the perforated block).
+      subdivision().constraint_leaves();
+      subdivision().constraint_circles();
     }
-  }
-  if (pool->limited()) {
-    // The constraint circles are searched leaf by leaf: a small fan gets its leaves now,
-    // without their candidates, which the enumeration offered already (re-offering them
-    // cost a quarter of a constrained valence-4 solve on the perforated block).
-    if (!subdivided) subdivision().constraint_leaves();
-    subdivision().constraint_circles();
   }
   *n_cells = lazy ? lazy->stats().cells : 0;
   return non_unique;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "candidate_families.h"
 
@@ -155,7 +156,7 @@ void SiteSubdivision::refine_roots() {
 }
 
 void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end,
-                             int depth, int parent_sites, int stable_levels) {
+                             int depth, int parent_sites, int stable_levels, bool invisible) {
   ++stats_.cells;
   stats_.max_depth = std::max(stats_.max_depth, depth);
   const Vec3& c = cell.c;
@@ -197,10 +198,17 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
 
   const double d_high = d + rho + kBoundMargin;
   if (d_high < pool_.threshold()) return;
-  const bool maybe_feasible = !pool_.constrained() || v + rho + kBoundMargin >= pool_.v_min() - kConstraintSlack;
-  // A cell invisible below V_min all over holds no candidate of the constraint circles
-  // (docs/normals.md): when only those are sought, it is dropped whatever its D.
-  if (!maybe_feasible && (!offer_subsets_ || d_high < pool_.unconstrained_threshold())) return;
+  const bool maybe_feasible =
+      !invisible && (!pool_.constrained() || v + rho + kBoundMargin >= pool_.v_min() - kConstraintSlack);
+  if (!maybe_feasible) {
+    // A cell invisible below V_min all over holds no candidate of the constraint circles
+    // (docs/normals.md): when only those are sought, it is dropped whatever its D.
+    if (!offer_subsets_ || d_high < pool_.unconstrained_threshold()) return;
+    if (!refining_set_aside_ || pool_.limited()) {
+      set_aside(cell, arcs_begin, arcs_end, faces_begin, faces_end, depth, parent_sites, stable_levels, d_high);
+      return;
+    }
+  }
   if (d > rho + kBoundMargin) {
     // No arc meets the cap: the whole cell lies on the side of its centre.
     const bool fluid = interior ? cf > 0.0 : fluid_at_vertex(g_, vertex, c);
@@ -227,16 +235,73 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   const int stable = n_sites == parent_sites ? stable_levels + 1 : 0;
   if (n_sites <= kLeafSites || rho < kMinRadius || (n_sites <= kSmallLeaf && stable >= kStableLevels) ||
       (n_sites <= kSmallLeaf && rho < kSmallLeafRadius)) {
-    record_leaf(cell, d, v, own_faces, own_end);
+    record_leaf(cell, d, v, own_faces, own_end, !maybe_feasible);
     if (offer_subsets_) enumerate_new_subsets();
   } else {
     const double half = 0.5 * cell.size;
     for (double dx : {0.0, half})
       for (double dy : {0.0, half})
         refine(make_cell(cell.chart, cell.x0 + dx, cell.y0 + dy, half), own_arcs, own_faces, own_faces, own_end,
-               depth + 1, n_sites, stable);
+               depth + 1, n_sites, stable, !maybe_feasible);
   }
   arena_.resize(own_arcs);
+}
+
+void SiteSubdivision::set_aside(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end,
+                                int depth, int parent_sites, int stable_levels, double d_high) {
+  ++stats_.set_aside;
+  set_aside_.push_back({cell, static_cast<int>(set_aside_ids_.size()), arcs_end - arcs_begin, faces_end - faces_begin,
+                        depth, parent_sites, stable_levels, d_high});
+  set_aside_ids_.insert(set_aside_ids_.end(), arena_.begin() + arcs_begin, arena_.begin() + arcs_end);
+  set_aside_ids_.insert(set_aside_ids_.end(), arena_.begin() + faces_begin, arena_.begin() + faces_end);
+}
+
+bool SiteSubdivision::remaining_passes() {
+  bool non_unique = false, plateaus_done = false, circles_done = false;
+  auto plateaus = [&]() {
+    non_unique = pool_.unconstrained_maxima_distinct() || pool_.constrained_maxima_distinct();
+    if (non_unique) plateau_peaks();
+    plateaus_done = true;
+  };
+  for (;;) {
+    // A direction beyond the tie of the constrained optimum is known: the plateaus first
+    // (their feasible part may reach it), then the constraint circles.
+    if (!circles_done && pool_.limited()) {
+      if (!plateaus_done) plateaus();
+      if (pool_.limited()) {
+        constraint_circles();
+        circles_done = true;
+      }
+    }
+    // The constrained optimum is final and some direction beats it: the status is settled.
+    if (circles_done && pool_.limited()) break;
+    if (set_aside_.empty()) break;
+    refine_set_aside();
+  }
+  if (!plateaus_done) plateaus();
+  if (!circles_done && pool_.limited()) constraint_circles();
+  return non_unique;
+}
+
+void SiteSubdivision::refine_set_aside() {
+  set_aside_batch_.clear();
+  set_aside_batch_ids_.clear();
+  set_aside_batch_.swap(set_aside_);
+  set_aside_batch_ids_.swap(set_aside_ids_);
+  // The cell that may reach the highest D first: the likeliest to show a direction beyond
+  // the constrained optimum at once.
+  std::sort(set_aside_batch_.begin(), set_aside_batch_.end(),
+            [](const SetAside& a, const SetAside& b) { return a.d_high > b.d_high; });
+  pool_.end_constrained_pass();
+  refining_set_aside_ = true;
+  for (const SetAside& cell : set_aside_batch_) {
+    ++stats_.set_aside_refined;
+    arena_.assign(set_aside_batch_ids_.begin() + cell.ids_begin,
+                  set_aside_batch_ids_.begin() + cell.ids_begin + cell.n_arcs + cell.n_faces);
+    refine(cell.cell, 0, cell.n_arcs, cell.n_arcs, cell.n_arcs + cell.n_faces, cell.depth, cell.parent_sites,
+           cell.stable_levels, true);
+  }
+  refining_set_aside_ = false;
 }
 
 // The sites that can be nearest in a cell: reflex ends of the kept arcs within reach
@@ -383,8 +448,11 @@ void SiteSubdivision::enumerate_new_subsets() {
   }
 }
 
-void SiteSubdivision::record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end) {
-  Leaf leaf{cell.c, cell.rho, d, v, static_cast<int>(leaf_ids_.size()), 0, 0,
+void SiteSubdivision::record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end,
+                                  bool invisible) {
+  // An invisible leaf keeps a V bound below any V_min, so that no pass takes it for a
+  // feasible one (leaf_alive).
+  Leaf leaf{cell.c, cell.rho, d, invisible ? -std::numeric_limits<double>::infinity() : v, static_cast<int>(leaf_ids_.size()), 0, 0,
             static_cast<int>(leaf_points_.size()), static_cast<int>(leaf_arcs_.size()), faces_end - faces_begin,
             cos_bound(cell.rho + kBoundMargin)};
   leaf_ids_.insert(leaf_ids_.end(), leaf_points_.begin(), leaf_points_.end());

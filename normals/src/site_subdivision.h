@@ -95,6 +95,8 @@ struct SubdivisionStats {
   int cells = 0;
   int leaves = 0;
   int max_depth = 0;
+  int set_aside = 0;          // cells set aside (each time)
+  int set_aside_refined = 0;  // set-aside cells taken up again
 };
 
 class SiteSubdivision {
@@ -102,7 +104,9 @@ class SiteSubdivision {
   SiteSubdivision(const FanSites& sites, CandidatePool* pool);
 
   // Refines the whole sphere (six cube faces) and offers every leaf's 1-, 2- and 3-site
-  // candidates.
+  // candidates. Under the visibility constraint, cells invisible below V_min all over
+  // that could still hold the unconstrained optimum are set aside (see "Set-aside
+  // cells" below).
   void unconstrained_candidates();
   // The leaves the constraint-circle pass needs, without offering their candidates, for
   // a fan whose candidates an enumeration of all its sites has offered already: the
@@ -116,6 +120,22 @@ class SiteSubdivision {
   // Candidates on the constraint circles n.f_i = V_min crossing each leaf (puts the
   // pool in its constrained pass).
   void constraint_circles();
+
+  // Set-aside cells. A cell invisible below V_min all over holds no candidate of the
+  // constrained problem: its candidates can only raise the unconstrained optimum, which
+  // decides no answer, only whether the constraint limits it (the status, and whether
+  // the constraint circles are searched at all). On sliver fans that optimum sits on a
+  // near-plateau of near-antipodal link vertices, and pinning its value took thousands
+  // of such cells, while any direction beyond the tie of the constrained optimum settles
+  // the status. So the refinement sets those cells aside, and the caller refines them
+  // (refine_set_aside) only while no such direction is known; a set-aside cell is
+  // dropped like any other once it cannot reach the unconstrained threshold.
+  //
+  // The passes after unconstrained_candidates[_near]: the plateau peaks where the
+  // maximisers found are distinct, then, where the constraint limits the optimum, the
+  // constraint circles, refining set-aside cells only while the status is open. Returns
+  // whether the maximisers were distinct when the plateau pass was decided.
+  bool remaining_passes();
 
   const SubdivisionStats& stats() const { return stats_; }
 
@@ -145,10 +165,27 @@ class SiteSubdivision {
     double cos_cap;
   };
 
+  // A cell set aside with what its refinement needs: its parent's kept arcs and faces
+  // (ids_begin .. + n_arcs, then n_faces, in set_aside_ids_).
+  struct SetAside {
+    Cell cell;
+    int ids_begin, n_arcs, n_faces;
+    int depth, parent_sites, stable_levels;
+    double d_high;
+  };
+
   Cell make_cell(int chart, double x0, double y0, double size) const;
   void refine_roots();
+  // `invisible`: the cell lies in a set-aside one, so it is invisible below V_min all
+  // over whatever its own bound says.
   void refine(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
-              int parent_sites, int stable_levels);
+              int parent_sites, int stable_levels, bool invisible = false);
+  // Refines the set-aside cells, the one that may reach the highest D first, until the
+  // pool is limited (its remaining cells are set aside again) or none is left. Their
+  // leaves count as invisible all over: none is searched for constraint circles.
+  void refine_set_aside();
+  void set_aside(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
+                 int parent_sites, int stable_levels, double d_high);
   // Fills leaf_points_, leaf_arcs_ and near_ for the cell B(c, rho) from its kept arcs
   // arena_[arcs_begin, arcs_end), the ends within cos_reach (c.u >= cos_reach).
   void gather_sites(const Vec3& c, double rho, double cos_reach, int arcs_begin, int arcs_end);
@@ -163,7 +200,7 @@ class SiteSubdivision {
   // Removes from *crossing the faces whose circles lie where another face of the leaf
   // is infeasible.
   void drop_circles_below_another(const Leaf& leaf, std::vector<int>* crossing);
-  void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end);
+  void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end, bool invisible);
   void offer(const Leaf& leaf, const Vec3& n);
   void offer_anywhere(const Vec3& n);
   bool first_time(int a, int b, int c);
@@ -198,6 +235,9 @@ class SiteSubdivision {
   std::size_t subset_count_ = 0;
   int n_points_ = 0;
   bool offer_subsets_ = true;
+  bool refining_set_aside_ = false;
+  RecycledVector<SetAside> set_aside_, set_aside_batch_;
+  RecycledVector<int> set_aside_ids_, set_aside_batch_ids_;
   SubdivisionStats stats_;
 };
 
