@@ -224,7 +224,7 @@ class SiteSubdivision {
   RecycledVector<std::pair<double, int>> near_;
   // Scratch of the constraint-circle pass: (c.f_i, i) of a leaf's faces.
   RecycledVector<std::pair<double, int>> by_visibility_;
-  int pair_tries_ = 0, pair_drops_ = 0;
+  int pair_tries_ = 0, pair_drops_ = 0, pair_skips_ = 0;
   int stamp_ = 0;
   RecycledVector<int> leaf_points_, leaf_arcs_;  // scratch of the cell being classified
   RecycledVector<Leaf> leaves_;
