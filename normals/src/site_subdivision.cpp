@@ -32,6 +32,12 @@ constexpr double kSmallLeafRadius = 1e-3;
 // separate maximisers that matter.
 constexpr double kMinRadius = 1e-8;
 
+// Under a binding visibility constraint, a fluid cell centre whose D exceeds the
+// threshold by more than kProbeReach cell radii plus kProbeGain (radians) is offered as
+// a floor (SiteSubdivision::probe_centre).
+constexpr double kProbeReach = 2.0;
+constexpr double kProbeGain = 1e-3;
+
 // Allowance on every angle bound of a cell (D(c) + rho, V(c) + rho, the reach
 // D(c) + 2 rho): D(c) is computed to ~1e-16 and rho to ~1e-16, so 1e-12 keeps every
 // decision conservative by four orders.
@@ -218,6 +224,7 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
     // No arc meets the cap: the whole cell lies on the side of its centre.
     const bool fluid = interior ? cf > 0.0 : fluid_at_vertex(g_, vertex, c);
     if (!fluid) return;
+    if (pool_.limited() && d - kProbeReach * rho > pool_.threshold() + kProbeGain) probe_centre(c);
   }
 
   const double cos_reach = cos_bound(d + 2.0 * rho + kBoundMargin);
@@ -250,6 +257,15 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
                depth + 1, n_sites, stable, !maybe_feasible);
   }
   arena_.resize(own_arcs);
+}
+
+void SiteSubdivision::probe_centre(const Vec3& c) {
+  if (pool_.constrained() && !(fan_visibility(g_, c) >= pool_.v_min())) return;
+  double d;
+  bool fluid;
+  if (!pool_.evaluate(c, pool_.threshold(), &d, &fluid) || !fluid || !(d > pool_.floor())) return;
+  pool_.raise_floor(c, d);
+  ++stats_.floors_raised;
 }
 
 void SiteSubdivision::set_aside(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end,

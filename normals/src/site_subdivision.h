@@ -97,6 +97,7 @@ struct SubdivisionStats {
   int max_depth = 0;
   int set_aside = 0;          // cells set aside (each time)
   int set_aside_refined = 0;  // set-aside cells taken up again
+  int floors_raised = 0;      // cell centres that raised the pool's floor
 };
 
 class SiteSubdivision {
@@ -184,6 +185,14 @@ class SiteSubdivision {
   // pool is limited (its remaining cells are set aside again) or none is left. Their
   // leaves count as invisible all over: none is searched for constraint circles.
   void refine_set_aside();
+  // Raises the pool's floor to D at centre c when c is fluid and feasible. Where the
+  // constraint binds, the constrained optimum lies on a constraint circle, built only by
+  // the pass after the refinement; until then the threshold is the best feasible
+  // candidate of the leaves, often far below, and every feasible cell above it is refined
+  // (a valence-30 sliver fan: 10,106 cells and 4.6 ms, with the probes 3,710 and 1.0 ms).
+  // The floor is a point's exact D, so the optimum reaches it, and it never enters the
+  // maximisers (CandidatePool::raise_floor).
+  void probe_centre(const Vec3& c);
   void set_aside(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
                  int parent_sites, int stable_levels, double d_high);
   // Fills leaf_points_, leaf_arcs_ and near_ for the cell B(c, rho) from its kept arcs

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "agreement_test_support.h"
 #include "blayer/normals/most_normal.h"
 #include "blayer/normals/most_visible.h"
 #include "cad_fans.h"
@@ -99,6 +100,35 @@ TEST(SiteSubdivision, SetAsideInvisibleCellsLeaveTheEnumerationStatus) {
   EXPECT_GT(settled_early, 10);
   EXPECT_GT(settled_by_set_aside, 0);
   EXPECT_GT(exhausted, 10);
+}
+
+// Where the constraint binds, feasible cell centres far above the threshold raise the
+// pool's floor during the refinement. The floor is an exact D, so the constrained
+// optimum, the status and the tie-broken direction stay the enumeration's.
+TEST(SiteSubdivision, CentresProbedAsFloorsLeaveTheEnumerationOptimum) {
+  std::mt19937 rng(4141);
+  int probed = 0;
+  // Probes fire on a few per cent of the CAD-like fans of valence 24 and up.
+  testing_fans::for_each_cad_fan(rng, {24, 30}, 30, [&](const FanGeometry& g, const std::string& label) {
+    const MostVisibleResult mv = most_visible_normal(g.face_normals);
+    if (!mv.feasible) return;
+    detail::CandidatePool pool(g, default_tolerances(), true, 0.5 * mv.visibility);
+    detail::FanSites sites;
+    detail::build_fan_sites(g, default_tolerances(), &sites);
+    if (sites.points.empty()) return;
+    pool.consider(mv.normal);
+    detail::SiteSubdivision subdivision(sites, &pool);
+    subdivision.unconstrained_candidates();
+    subdivision.remaining_passes();
+    if (subdivision.stats().floors_raised == 0) return;
+    ++probed;
+    // A floor above every candidate would mean the candidates missed the optimum.
+    EXPECT_GE(pool.best_constrained(), pool.floor() - default_tolerances().normality_tie) << label;
+    const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), true);
+    EXPECT_NEAR(pool.best_constrained(), oracle.normality, default_tolerances().normality_tie) << label;
+    EXPECT_TRUE(testing_fans::same_optimum(g, true, most_normal_normal(g), oracle)) << label;
+  });
+  EXPECT_GT(probed, 5);
 }
 
 // The pool's exact D at a direction agrees with the reference distance to the link, and
