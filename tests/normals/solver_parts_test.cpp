@@ -1,7 +1,8 @@
 // The parts of the default most-normal solver on their own (white-box, normals/src):
 // the candidate pool evaluates D and the fluid side as the references do,
 // the subdivision over the whole sphere finds the enumeration's optimum on fans of every
-// size, the link-vertex lens holds every sampled direction of its superlevel set, the
+// size (also where it sets invisible cells aside and where cell centres raise its
+// floor), the link-vertex lens holds every sampled direction of its superlevel set, the
 // lower envelope of V along a plateau circle peaks as high as all pairwise crossings do,
 // and the constraint pass's great-circle screen keeps every circle through a leaf.
 #include <gtest/gtest.h>
