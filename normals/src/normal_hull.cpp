@@ -1,65 +1,86 @@
 #include "normal_hull.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Convex_hull_traits_3.h>
-#include <CGAL/convex_hull_3.h>
-
 #include <array>
-#include <cstddef>
-#include <map>
+#include <utility>
 #include <vector>
+
+#include "blayer/quality/filtered_orient3d.h"
 
 namespace blayer {
 namespace detail {
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
+using Facet = std::array<int, 3>;
 
-// Whether the points span a volume: some four of them are not coplanar (exact).
-bool spans_volume(const std::vector<Point>& p) {
-  const int k = static_cast<int>(p.size());
+// Whether p lies strictly above the plane of facet t (on the side its winding faces).
+bool above(const Vec3* f, const Facet& t, int p) { return orient3d_filtered(f[t[0]], f[t[1]], f[t[2]], f[p]) > 0; }
+
+// The first four points that span a volume, or false. Exact: point 0, the first point b
+// apart from it, the first c not on their line, the first d after c off their plane (a c
+// on the line has every d on a plane with it; a c off the line with no d off its plane
+// leaves every point on one plane).
+bool initial_simplex(const Vec3* f, int k, int* s) {
   int b = 1;
-  while (b < k && p[b] == p[0]) ++b;
-  if (b == k) return false;
-  int c = b + 1;
-  while (c < k && CGAL::collinear(p[0], p[b], p[c])) ++c;
-  if (c >= k) return false;
-  for (int d = c + 1; d < k; ++d)
-    if (CGAL::orientation(p[0], p[b], p[c], p[d]) != CGAL::COPLANAR) return true;
+  while (b < k && f[b] == f[0]) ++b;
+  for (int c = b + 1; c < k; ++c)
+    for (int d = c + 1; d < k; ++d)
+      if (orient3d_filtered(f[0], f[b], f[c], f[d]) != 0) {
+        s[0] = 0;
+        s[1] = b;
+        s[2] = c;
+        s[3] = d;
+        return true;
+      }
   return false;
 }
 
 }  // namespace
 
+// Beneath-beyond: points are added in index order; a point above some facets replaces
+// them by the fan from it to their horizon. "Above" is the exact strict orientation, so
+// a point on the hull's surface (a repeated normal, a point in a facet's plane, inside
+// it) is not added, and a point in the plane of a facet but outside it sees the facets
+// beyond the convex edges of that plane's polygon, never none. O(k h) orientation tests,
+// nearly all settled by the floating-point filter.
 bool normal_hull_facets(const Vec3* f, int k, std::vector<std::array<int, 3>>* facets) {
   facets->clear();
   if (k < 4) return false;
   for (int i = 0; i < k; ++i)
-    if (!is_finite(f[i])) return false;  // CGAL's predicates assume finite coordinates
-  std::vector<Point> points;
-  points.reserve(k);
-  std::map<Point, int> index;
-  for (int i = 0; i < k; ++i) {
-    points.emplace_back(f[i][0], f[i][1], f[i][2]);
-    index.emplace(points.back(), i);
+    if (!is_finite(f[i])) return false;  // the exact predicate assumes finite coordinates
+  int s[4];
+  if (!initial_simplex(f, k, s)) return false;
+  std::vector<Facet>& hull = *facets;
+  for (int t = 0; t < 4; ++t) {
+    Facet face{s[t], s[(t + 1) % 4], s[(t + 2) % 4]};
+    if (above(f, face, s[(t + 3) % 4])) std::swap(face[1], face[2]);
+    hull.push_back(face);
   }
-  if (!spans_volume(points)) return false;
-  // The hull as an indexed triangle set (its own vertex list, copies of input points),
-  // with the convex hull traits' exact plane predicates.
-  using Traits = CGAL::Convex_hull_traits_3<Kernel, CGAL::Default, CGAL::Tag_true>;
-  using Points = std::vector<Point>;
-  using Faces = std::vector<std::array<std::size_t, 3>>;
-  thread_local Points hull_points;
-  thread_local Faces hull_faces;
-  hull_points.clear();
-  hull_faces.clear();
-  CGAL::convex_hull_3<Points::iterator, Point, Points, Faces, Traits>(points.begin(), points.end(), hull_points,
-                                                                      hull_faces, Traits());
-  for (const auto& face : hull_faces)
-    facets->push_back({index.at(hull_points[face[0]]), index.at(hull_points[face[1]]), index.at(hull_points[face[2]])});
-  return !facets->empty();
+  thread_local std::vector<Facet> kept;
+  thread_local std::vector<std::array<int, 2>> rim;  // edges of the facets the point sees
+  for (int p = 0; p < k; ++p) {
+    if (p == s[0] || p == s[1] || p == s[2] || p == s[3]) continue;
+    kept.clear();
+    rim.clear();
+    for (const Facet& t : hull) {
+      if (above(f, t, p)) {
+        rim.push_back({t[0], t[1]});
+        rim.push_back({t[1], t[2]});
+        rim.push_back({t[2], t[0]});
+      } else {
+        kept.push_back(t);
+      }
+    }
+    if (rim.empty()) continue;
+    // The horizon: edges of seen facets whose twin belongs to a facet not seen.
+    for (const auto& [u, v] : rim) {
+      bool inner = false;
+      for (const auto& [x, y] : rim) inner = inner || (x == v && y == u);
+      if (!inner) kept.push_back({u, v, p});
+    }
+    hull.swap(kept);
+  }
+  return true;
 }
 
 }  // namespace detail

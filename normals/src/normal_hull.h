@@ -1,7 +1,8 @@
 // The convex hull of a fan's unit face normals, for the margin of a fan with no visible
-// direction (most_visible.h, best_margin_direction): its facets, as triples of indices
-// into the normals. Internal to blayer_normals; the only translation unit of the module
-// that includes CGAL.
+// direction (most_visible.h, best_margin_direction) and for the cap of the link vertices
+// where Wolfe's iteration is uncertified (most_visible_on_hull): its facets, as triples
+// of indices into the normals. Internal to blayer_normals; exact through the filtered
+// orient3d of blayer_quality.
 #pragma once
 
 #include <array>

@@ -117,9 +117,31 @@ TEST(BestMargin, NonFiniteNormalsSkipTheHull) {
   EXPECT_EQ(facets.size(), 4u);
 }
 
-// The hull's triangles close a convex surface around every normal, wound outwards: each
-// normal lies on or below each triangle's plane, and every edge is shared by exactly two
-// triangles, in opposite directions. Points in general position and CAD-like clusters.
+// The hull's triangles close a convex surface around every point, wound outwards: each
+// point lies on or below each triangle's plane, every triangle has area, and every edge
+// is shared by exactly two triangles, in opposite directions. A closed convex surface
+// through input points around all of them is their hull.
+void expect_closed_hull(const std::vector<Vec3>& f, const std::string& what) {
+  std::vector<std::array<int, 3>> facets;
+  ASSERT_TRUE(detail::normal_hull_facets(f.data(), static_cast<int>(f.size()), &facets)) << what;
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& [a, b, c] : facets) {
+    const Vec3 out = cross(f[b] - f[a], f[c] - f[a]);
+    EXPECT_GT(norm(out), 0.0) << what;
+    for (const Vec3& x : f) EXPECT_LE(dot(out, x - f[a]), 1e-12 * norm(out)) << what;
+    edges.push_back({a, b});
+    edges.push_back({b, c});
+    edges.push_back({c, a});
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    EXPECT_TRUE(e == 0 || edges[e] != edges[e - 1]) << what << ": an edge used twice one way";
+    EXPECT_TRUE(std::binary_search(edges.begin(), edges.end(), std::array<int, 2>{edges[e][1], edges[e][0]}))
+        << what << ": an edge without its twin";
+  }
+}
+
+// Points in general position and CAD-like clusters.
 TEST(NormalHull, TrianglesCloseTheHullWoundOutwards) {
   std::mt19937 rng(31);
   std::normal_distribution<double> gauss(0.0, 1.0);
@@ -131,23 +153,30 @@ TEST(NormalHull, TrianglesCloseTheHullWoundOutwards) {
       if (trial % 2 == 1) x = Vec3{0.0, 0.0, 1.0} + 1e-3 * x;  // a cluster, as a fan face's normals
       f.push_back(normalized(x));
     }
-    std::vector<std::array<int, 3>> facets;
-    ASSERT_TRUE(detail::normal_hull_facets(f.data(), k, &facets)) << "trial " << trial;
-    std::vector<std::array<int, 2>> edges;
-    for (const auto& [a, b, c] : facets) {
-      const Vec3 out = cross(f[b] - f[a], f[c] - f[a]);
-      for (const Vec3& x : f) EXPECT_LE(dot(out, x - f[a]), 1e-12 * norm(out)) << "trial " << trial;
-      edges.push_back({a, b});
-      edges.push_back({b, c});
-      edges.push_back({c, a});
-    }
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      EXPECT_TRUE(e == 0 || edges[e] != edges[e - 1]) << "trial " << trial << ": an edge used twice one way";
-      EXPECT_TRUE(std::binary_search(edges.begin(), edges.end(), std::array<int, 2>{edges[e][1], edges[e][0]}))
-          << "trial " << trial << ": an edge without its twin";
-    }
+    expect_closed_hull(f, "trial " + std::to_string(trial));
   }
+}
+
+// Exactly coplanar points on the facets (a cube's corners, face centres, edge midpoints
+// and repeats, shuffled), so that points land in facet planes, on edges and on vertices
+// as the hull grows; and a cone of points on one circle around an apex.
+TEST(NormalHull, TrianglesCloseTheHullOfCoplanarAndRepeatedPoints) {
+  std::mt19937 rng(8);
+  std::vector<Vec3> grid;
+  for (int x = -1; x <= 1; ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z)
+        if (x != 0 || y != 0 || z != 0) grid.push_back({0.5 * x, 0.5 * y, 0.5 * z});
+  for (int trial = 0; trial < 30; ++trial) {
+    std::vector<Vec3> f = grid;
+    for (int r = 0; r < trial % 5; ++r) f.push_back(grid[static_cast<std::size_t>(r * 7) % grid.size()]);
+    std::shuffle(f.begin(), f.end(), rng);
+    expect_closed_hull(f, "cube grid, trial " + std::to_string(trial));
+  }
+  std::vector<Vec3> cone{{0.0, 0.0, 1.0}};
+  for (int i = 0; i < 24; ++i)
+    cone.push_back({0.5 * std::cos(M_PI * i / 12.0), 0.5 * std::sin(M_PI * i / 12.0), -0.5});
+  expect_closed_hull(cone, "cone");
 }
 
 // The face normals of CAD-like fans of valence 12 to 60 (thin fan triangles: many nearly
