@@ -381,9 +381,16 @@ bool SiteSubdivision::pair_bound_below(const Vec3& c, double rho) {
   const double cr = std::cos(rho), sr = std::sin(rho);
   const double level = std::cos(thr) + kPairMargin;
   // The bound's cosine is at most c.q cos(rho) = (c.u_a + c.u_b) cos(rho) / 2: with the
-  // vertices by decreasing c.u, each a's partners stop at the first b below that.
-  std::sort(near_.begin(), near_.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  // vertices by decreasing c.u, each a's partners stop at the first b below that. A
+  // vertex whose c.u falls short of that even beside the largest pairs with none, so
+  // only the others are sorted (they are the same pairs, in the same order).
   const double pair_sum = 2.0 * level / cr;
+  double largest = -2.0;
+  for (const auto& entry : near_) largest = std::max(largest, entry.first);
+  near_.erase(std::remove_if(near_.begin(), near_.end(),
+                             [&](const auto& entry) { return !(entry.first + largest > pair_sum); }),
+              near_.end());
+  std::sort(near_.begin(), near_.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
   const int n = static_cast<int>(near_.size());
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n && near_[a].first + near_[b].first > pair_sum; ++b) {

@@ -204,7 +204,7 @@ class SiteSubdivision {
   // of near-ties (straight ridges, sliver fans) that the Lipschitz bound keeps down to
   // the size of the offsets between the sites. Any pair gives a valid bound; as a matter
   // of cost, pairs are taken among the cell's vertices within reach (near_, which it
-  // reorders).
+  // reorders and trims).
   bool pair_bound_below(const Vec3& c, double rho);
   // Removes from *crossing the faces whose circles lie where another face of the leaf
   // is infeasible.
