@@ -483,7 +483,8 @@ void SiteSubdivision::record_leaf(const Cell& cell, double d, double v, int face
                                   bool invisible) {
   // An invisible leaf keeps a V bound below any V_min, so that no pass takes it for a
   // feasible one (leaf_alive).
-  Leaf leaf{cell.c, cell.rho, d, invisible ? -std::numeric_limits<double>::infinity() : v, static_cast<int>(leaf_ids_.size()), 0, 0,
+  const double v_bound = invisible ? -std::numeric_limits<double>::infinity() : v;
+  Leaf leaf{cell.c, cell.rho, d, v_bound, static_cast<int>(leaf_ids_.size()), 0, 0,
             static_cast<int>(leaf_points_.size()), static_cast<int>(leaf_arcs_.size()), faces_end - faces_begin,
             cos_bound(cell.rho + kBoundMargin)};
   leaf_ids_.insert(leaf_ids_.end(), leaf_points_.begin(), leaf_points_.end());

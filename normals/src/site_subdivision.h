@@ -26,7 +26,9 @@
 // s has d_s(c) <= d_s(x) + rho = D(x) + rho <= D(c) + 2 rho, so it survives in the leaf,
 // and the leaf's enumeration of its subsets builds x by the same formula as the full
 // enumeration. A dropped cell holds no fluid point with D above the threshold of its
-// kind, and thresholds only rise. Each subset is enumerated once, in the first leaf
+// kind, and thresholds only rise. A set-aside cell (below) that is never refined holds
+// only directions that fail the constraint, and is left so only once the status no
+// longer depends on them. Each subset is enumerated once, in the first leaf
 // that holds it, and its candidates are offered wherever they lie. So every candidate of
 // the full enumeration that is a critical point of D and can become a maximiser is
 // offered; only candidates built from sites that are not nearest to them may be missing,
