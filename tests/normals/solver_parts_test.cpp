@@ -44,27 +44,42 @@ void for_each_random_fan(std::mt19937& rng, int per_shape, Visit&& visit) {
     }
 }
 
+// The whole-sphere subdivision alone, as the default solver runs it on large fans: the
+// figures of its pool and its statistics. False where it does not run (no visible
+// direction, or no reflex vertex: MN = MV).
+struct SubdivisionOutcome {
+  double best_constrained, floor;
+  bool limited;
+  detail::SubdivisionStats stats;
+};
+bool run_subdivision(const FanGeometry& g, bool constrained, SubdivisionOutcome* out) {
+  const MostVisibleResult mv = most_visible_normal(g.face_normals);
+  if (!mv.feasible) return false;
+  detail::CandidatePool pool(g, default_tolerances(), constrained, 0.5 * mv.visibility);
+  detail::FanSites sites;
+  detail::build_fan_sites(g, default_tolerances(), &sites);
+  if (sites.points.empty()) return false;
+  pool.consider(mv.normal);
+  detail::SiteSubdivision subdivision(sites, &pool);
+  subdivision.unconstrained_candidates();
+  subdivision.remaining_passes();
+  *out = {pool.best_constrained(), pool.floor(), pool.limited(), subdivision.stats()};
+  return true;
+}
+
 // The whole-sphere subdivision alone (the default solver sends small fans to the
 // screened enumeration instead) reaches the enumeration's optimum D.
 TEST(SiteSubdivision, ReachesTheEnumerationOptimumOnAnyFan) {
   std::mt19937 rng(99);
   int n = 0;
   for_each_random_fan(rng, 150, [&](const FanGeometry& g, const std::string& label) {
-    const MostVisibleResult mv = most_visible_normal(g.face_normals);
-    if (!mv.feasible) return;
     for (bool constrained : {true, false}) {
-      detail::CandidatePool pool(g, default_tolerances(), constrained, 0.5 * mv.visibility);
-      detail::FanSites sites;
-      detail::build_fan_sites(g, default_tolerances(), &sites);
-      if (sites.points.empty()) continue;
-      pool.consider(mv.normal);
-      detail::SiteSubdivision subdivision(sites, &pool);
-      subdivision.unconstrained_candidates();
-      subdivision.remaining_passes();
+      SubdivisionOutcome run;
+      if (!run_subdivision(g, constrained, &run)) continue;
       const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), constrained);
       ++n;
-      EXPECT_NEAR(pool.best_constrained(), oracle.normality, 1e-12) << label << (constrained ? " constrained" : " free");
-      EXPECT_GE(subdivision.stats().cells, 6);  // every cube face visited
+      EXPECT_NEAR(run.best_constrained, oracle.normality, 1e-12) << label << (constrained ? " constrained" : " free");
+      EXPECT_GE(run.stats.cells, 6);  // every cube face visited
     }
   });
   EXPECT_GT(n, 900);
@@ -79,24 +94,15 @@ TEST(SiteSubdivision, SetAsideInvisibleCellsLeaveTheEnumerationStatus) {
   std::mt19937 rng(2718);
   int settled_early = 0, settled_by_set_aside = 0, exhausted = 0;
   testing_fans::for_each_cad_fan(rng, {12, 16, 20, 24}, 8, [&](const FanGeometry& g, const std::string& label) {
-    const MostVisibleResult mv = most_visible_normal(g.face_normals);
-    if (!mv.feasible) return;
-    detail::CandidatePool pool(g, default_tolerances(), true, 0.5 * mv.visibility);
-    detail::FanSites sites;
-    detail::build_fan_sites(g, default_tolerances(), &sites);
-    if (sites.points.empty()) return;
-    pool.consider(mv.normal);
-    detail::SiteSubdivision subdivision(sites, &pool);
-    subdivision.unconstrained_candidates();
-    subdivision.remaining_passes();
+    SubdivisionOutcome run;
+    if (!run_subdivision(g, true, &run)) return;
     const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), true);
     // The enumeration's tie-break may pick a maximiser up to the tie below the best D.
-    EXPECT_NEAR(pool.best_constrained(), oracle.normality, default_tolerances().normality_tie) << label;
-    EXPECT_EQ(pool.limited(), oracle.status == NormalStatus::kVisibilityConstrained) << label;
-    const detail::SubdivisionStats& st = subdivision.stats();
-    if (pool.limited() && st.set_aside > st.set_aside_refined) ++settled_early;
-    if (pool.limited() && st.set_aside_refined > 0) ++settled_by_set_aside;
-    if (!pool.limited() && st.set_aside_refined > 0) ++exhausted;
+    EXPECT_NEAR(run.best_constrained, oracle.normality, default_tolerances().normality_tie) << label;
+    EXPECT_EQ(run.limited, oracle.status == NormalStatus::kVisibilityConstrained) << label;
+    if (run.limited && run.stats.set_aside > run.stats.set_aside_refined) ++settled_early;
+    if (run.limited && run.stats.set_aside_refined > 0) ++settled_by_set_aside;
+    if (!run.limited && run.stats.set_aside_refined > 0) ++exhausted;
   });
   EXPECT_GT(settled_early, 10);
   EXPECT_GT(settled_by_set_aside, 0);
@@ -111,22 +117,13 @@ TEST(SiteSubdivision, CentresProbedAsFloorsLeaveTheEnumerationOptimum) {
   int probed = 0;
   // Probes fire on a few per cent of the CAD-like fans of valence 24 and up.
   testing_fans::for_each_cad_fan(rng, {24, 30}, 30, [&](const FanGeometry& g, const std::string& label) {
-    const MostVisibleResult mv = most_visible_normal(g.face_normals);
-    if (!mv.feasible) return;
-    detail::CandidatePool pool(g, default_tolerances(), true, 0.5 * mv.visibility);
-    detail::FanSites sites;
-    detail::build_fan_sites(g, default_tolerances(), &sites);
-    if (sites.points.empty()) return;
-    pool.consider(mv.normal);
-    detail::SiteSubdivision subdivision(sites, &pool);
-    subdivision.unconstrained_candidates();
-    subdivision.remaining_passes();
-    if (subdivision.stats().floors_raised == 0) return;
+    SubdivisionOutcome run;
+    if (!run_subdivision(g, true, &run) || run.stats.floors_raised == 0) return;
     ++probed;
     // A floor above every candidate would mean the candidates missed the optimum.
-    EXPECT_GE(pool.best_constrained(), pool.floor() - default_tolerances().normality_tie) << label;
+    EXPECT_GE(run.best_constrained, run.floor - default_tolerances().normality_tie) << label;
     const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), true);
-    EXPECT_NEAR(pool.best_constrained(), oracle.normality, default_tolerances().normality_tie) << label;
+    EXPECT_NEAR(run.best_constrained, oracle.normality, default_tolerances().normality_tie) << label;
     EXPECT_TRUE(testing_fans::same_optimum(g, true, most_normal_normal(g), oracle)) << label;
   });
   EXPECT_GT(probed, 5);
