@@ -252,16 +252,18 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   } else {
     // Uphill first: D grows away from the nearest feature at c, so the children on that
     // side are refined first and their candidates raise the threshold for the others.
+    // Without candidates (constraint_leaves) the order gains nothing.
     const Vec3 away = interior ? (cf >= 0.0 ? 1.0 : -1.0) * f : -g_.dirs[vertex];
     const double half = 0.5 * cell.size;
     Cell kids[4];
     double rank[4];
     int order[4] = {0, 1, 2, 3};
-    for (int q = 0; q < 4; ++q) {
+    for (int q = 0; q < 4; ++q)
       kids[q] = make_cell(cell.chart, cell.x0 + (q >> 1) * half, cell.y0 + (q & 1) * half, half);
-      rank[q] = dot(kids[q].c, away);
+    if (offer_subsets_) {
+      for (int q = 0; q < 4; ++q) rank[q] = dot(kids[q].c, away);
+      std::sort(order, order + 4, [&](int a, int b) { return rank[a] > rank[b]; });
     }
-    std::sort(order, order + 4, [&](int a, int b) { return rank[a] > rank[b]; });
     for (int q : order)
       refine(kids[q], own_arcs, own_faces, own_faces, own_end, depth + 1, n_sites, stable, !maybe_feasible);
   }
