@@ -216,9 +216,11 @@ void hull_feature_keys(const std::vector<std::array<int, 3>>& facets, int n_vert
     std::sort(t.begin(), t.end());
     if (t[0] == t[1] || t[1] == t[2]) continue;
     for (const std::uint64_t key : {pack(t[0], t[1], t[2]), pack(t[0], t[1], -1), pack(t[0], t[2], -1),
-                                    pack(t[1], t[2], -1), pack(t[0], -1, -1), pack(t[1], -1, -1),
-                                    pack(t[2], -1, -1)})
+                                    pack(t[1], t[2], -1)})
       packed.push_back(key);
+    // Hull vertices below n_vertices are listed already.
+    for (const int a : t)
+      if (a >= n_vertices) packed.push_back(pack(a, -1, -1));
   }
   std::sort(packed.begin(), packed.end());
   packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
