@@ -15,14 +15,14 @@ namespace {
 bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof a) == 0; }
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// The gap of a ray from wall point w found in the memo, or NaN.
-double remembered_gap(const WallGapMemo& memo, int w, const WallGapMemo::Ray& ray) {
-  if (w + 1 >= static_cast<int>(memo.start.size())) return std::nan("");
+// The memo's ray from wall point w bitwise equal to `ray` (its gap aside), or null.
+const WallGapMemo::Ray* remembered_ray(const WallGapMemo& memo, int w, const WallGapMemo::Ray& ray) {
+  if (w + 1 >= static_cast<int>(memo.start.size())) return nullptr;
   for (int i = memo.start[w]; i < memo.start[w + 1]; ++i) {
     const WallGapMemo::Ray& r = memo.rays[i];
-    if (same_bits(r.dir, ray.dir) && same_bits(r.reach, ray.reach) && r.on_plane == ray.on_plane) return r.gap;
+    if (same_bits(r.dir, ray.dir) && same_bits(r.reach, ray.reach) && r.on_plane == ray.on_plane) return &r;
   }
-  return std::nan("");
+  return nullptr;
 }
 
 // The memo of this plan's rays (ray[v], for the columns with a direction).
@@ -51,14 +51,13 @@ std::vector<double> wall_gap_fractions(const WallTopology& topo, const ColumnPla
     const double vis = std::max(d.visibility[v], 1.0 / p.max_step_stretch);
     const double path = plan.target_total[v] / vis;
     const double reach = path / p.proximity_safety;
-    double gap = std::nan("");
+    const WallGapMemo::Ray* known = nullptr;
     if (memo) {
-      const WallGapMemo::Ray key{d.n[v], reach, rays.on_plane && (*rays.on_plane)[v], 0.0};
-      gap = remembered_gap(*memo, w[v], key);
-      if (gap == gap) reused.fetch_add(1, std::memory_order_relaxed);
-      ray[v] = key;
+      ray[v] = {d.n[v], reach, rays.on_plane && (*rays.on_plane)[v], 0.0};
+      known = remembered_ray(*memo, w[v], ray[v]);
+      if (known) reused.fetch_add(1, std::memory_order_relaxed);
     }
-    if (gap != gap) gap = rays.first_hit(v, wall_points[w[v]], d.n[v], reach);
+    const double gap = known ? known->gap : rays.first_hit(v, wall_points[w[v]], d.n[v], reach);
     if (memo) ray[v].gap = gap;
     if (gap < HUGE_VAL) fraction[v] = std::min(1.0, p.proximity_safety * gap * vis / plan.target_total[v]);
   });
