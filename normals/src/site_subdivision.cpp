@@ -32,9 +32,9 @@ constexpr double kSmallLeafRadius = 1e-3;
 // separate maximisers that matter.
 constexpr double kMinRadius = 1e-8;
 
-// Under a binding visibility constraint, a fluid cell centre whose D exceeds the
-// threshold by more than kProbeReach cell radii plus kProbeGain (radians) is offered as
-// a floor (SiteSubdivision::probe_centre).
+// Under a binding visibility constraint, or in a cell that reaches below V_min, a fluid
+// cell centre whose D exceeds the threshold by more than kProbeReach cell radii plus
+// kProbeGain (radians) is offered as a floor (SiteSubdivision::probe_centre).
 constexpr double kProbeReach = 2.0;
 constexpr double kProbeGain = 1e-3;
 
@@ -224,7 +224,12 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
     // No arc meets the cap: the whole cell lies on the side of its centre.
     const bool fluid = interior ? cf > 0.0 : fluid_at_vertex(g_, vertex, c);
     if (!fluid) return;
-    if (pool_.limited() && d - kProbeReach * rho > pool_.threshold() + kProbeGain) probe_centre(c);
+    // Probed where the constrained optimum may lie on a constraint circle, whose
+    // candidates come only after the refinement: under a binding constraint, and in a
+    // cell that reaches below V_min (V is 1-Lipschitz, so v - rho bounds it there).
+    const bool reaches_constraint = pool_.constrained() && v - rho - kBoundMargin < pool_.v_min();
+    if ((pool_.limited() || reaches_constraint) && d - kProbeReach * rho > pool_.threshold() + kProbeGain)
+      probe_centre(c);
   }
 
   const double cos_reach = cos_bound(d + 2.0 * rho + kBoundMargin);
@@ -275,6 +280,7 @@ void SiteSubdivision::probe_centre(const Vec3& c) {
   double d;
   bool fluid;
   if (!pool_.evaluate(c, pool_.threshold(), &d, &fluid) || !fluid || !(d > pool_.floor())) return;
+  if (!pool_.limited()) ++stats_.floors_raised_unlimited;
   pool_.raise_floor(c, d);
   ++stats_.floors_raised;
 }
