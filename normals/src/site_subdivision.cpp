@@ -226,9 +226,12 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
     if (!fluid) return;
     // Probed where the constrained optimum may lie on a constraint circle, whose
     // candidates come only after the refinement: under a binding constraint, and in a
-    // cell that reaches below V_min (V is 1-Lipschitz, so v - rho bounds it there).
+    // cell that reaches below V_min (V is 1-Lipschitz, so v - rho bounds it there). A
+    // centre below V_min on the kept faces is below it on all of them: not probed.
     const bool reaches_constraint = pool_.constrained() && v - rho - kBoundMargin < pool_.v_min();
-    if ((pool_.limited() || reaches_constraint) && d - kProbeReach * rho > pool_.threshold() + kProbeGain)
+    const bool centre_infeasible = pool_.constrained() && v < pool_.v_min();
+    if ((pool_.limited() || reaches_constraint) && !centre_infeasible &&
+        d - kProbeReach * rho > pool_.threshold() + kProbeGain)
       probe_centre(c);
   }
 
