@@ -109,6 +109,18 @@ TEST(SiteSubdivision, SetAsideInvisibleCellsLeaveTheEnumerationStatus) {
   EXPECT_GT(exhausted, 10);
 }
 
+// A constrained run whose probes raised the floor still reaches the enumeration's
+// optimum and status, and the default solver its tie-broken direction. A floor above
+// every candidate would mean the candidates missed the optimum.
+void expect_floors_leave_the_enumeration_optimum(const FanGeometry& g, const SubdivisionOutcome& run,
+                                                 const std::string& label) {
+  EXPECT_GE(run.best_constrained, run.floor - default_tolerances().normality_tie) << label;
+  const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), true);
+  EXPECT_NEAR(run.best_constrained, oracle.normality, default_tolerances().normality_tie) << label;
+  EXPECT_EQ(run.limited, oracle.status == NormalStatus::kVisibilityConstrained) << label;
+  EXPECT_TRUE(testing_fans::same_optimum(g, true, most_normal_normal(g), oracle)) << label;
+}
+
 // Where the constraint binds, feasible cell centres far above the threshold raise the
 // pool's floor during the refinement. The floor is an exact D, so the constrained
 // optimum, the status and the tie-broken direction stay the enumeration's.
@@ -120,11 +132,7 @@ TEST(SiteSubdivision, CentresProbedAsFloorsLeaveTheEnumerationOptimum) {
     SubdivisionOutcome run;
     if (!run_subdivision(g, true, &run) || run.stats.floors_raised == 0) return;
     ++probed;
-    // A floor above every candidate would mean the candidates missed the optimum.
-    EXPECT_GE(run.best_constrained, run.floor - default_tolerances().normality_tie) << label;
-    const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), true);
-    EXPECT_NEAR(run.best_constrained, oracle.normality, default_tolerances().normality_tie) << label;
-    EXPECT_TRUE(testing_fans::same_optimum(g, true, most_normal_normal(g), oracle)) << label;
+    expect_floors_leave_the_enumeration_optimum(g, run, label);
   });
   EXPECT_GT(probed, 5);
 }
@@ -142,11 +150,7 @@ TEST(SiteSubdivision, CentresNearTheConstraintProbedAsFloorsLeaveTheEnumerationO
     SubdivisionOutcome run;
     if (!run_subdivision(g, true, &run) || run.stats.floors_raised_unlimited == 0) return;
     ++probed;
-    EXPECT_GE(run.best_constrained, run.floor - default_tolerances().normality_tie) << label;
-    const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), true);
-    EXPECT_NEAR(run.best_constrained, oracle.normality, default_tolerances().normality_tie) << label;
-    EXPECT_EQ(run.limited, oracle.status == NormalStatus::kVisibilityConstrained) << label;
-    EXPECT_TRUE(testing_fans::same_optimum(g, true, most_normal_normal(g), oracle)) << label;
+    expect_floors_leave_the_enumeration_optimum(g, run, label);
   });
   EXPECT_GT(probed, 5);
 }
