@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -109,32 +110,34 @@ TEST(SiteSubdivision, SetAsideInvisibleCellsLeaveTheEnumerationStatus) {
   EXPECT_GT(exhausted, 10);
 }
 
-// A constrained run whose probes raised the floor still reaches the enumeration's
-// optimum and status, and the default solver its tie-broken direction. A floor above
-// every candidate would mean the candidates missed the optimum.
-void expect_floors_leave_the_enumeration_optimum(const FanGeometry& g, const SubdivisionOutcome& run,
-                                                 const std::string& label) {
-  EXPECT_GE(run.best_constrained, run.floor - default_tolerances().normality_tie) << label;
-  const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), true);
-  EXPECT_NEAR(run.best_constrained, oracle.normality, default_tolerances().normality_tie) << label;
-  EXPECT_EQ(run.limited, oracle.status == NormalStatus::kVisibilityConstrained) << label;
-  EXPECT_TRUE(testing_fans::same_optimum(g, true, most_normal_normal(g), oracle)) << label;
+// The constrained subdivision on the CAD-like fans of the given valences (per_shape of
+// each shape and offset); where counter (a SubdivisionStats field) shows probes that
+// raised the floor, the run must still reach the enumeration's optimum and status, and
+// the default solver its tie-broken direction: a floor above every candidate would
+// mean the candidates missed the optimum. Returns how many fans were probed.
+int check_probed_fans(unsigned seed, std::initializer_list<int> valences, int per_shape,
+                      int detail::SubdivisionStats::*counter) {
+  std::mt19937 rng(seed);
+  int probed = 0;
+  testing_fans::for_each_cad_fan(rng, valences, per_shape, [&](const FanGeometry& g, const std::string& label) {
+    SubdivisionOutcome run;
+    if (!run_subdivision(g, true, &run) || run.stats.*counter == 0) return;
+    ++probed;
+    EXPECT_GE(run.best_constrained, run.floor - default_tolerances().normality_tie) << label;
+    const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), true);
+    EXPECT_NEAR(run.best_constrained, oracle.normality, default_tolerances().normality_tie) << label;
+    EXPECT_EQ(run.limited, oracle.status == NormalStatus::kVisibilityConstrained) << label;
+    EXPECT_TRUE(testing_fans::same_optimum(g, true, most_normal_normal(g), oracle)) << label;
+  });
+  return probed;
 }
 
 // Where the constraint binds, feasible cell centres far above the threshold raise the
 // pool's floor during the refinement. The floor is an exact D, so the constrained
 // optimum, the status and the tie-broken direction stay the enumeration's.
 TEST(SiteSubdivision, CentresProbedAsFloorsLeaveTheEnumerationOptimum) {
-  std::mt19937 rng(4141);
-  int probed = 0;
   // Probes fire on a few per cent of the CAD-like fans of valence 24 and up.
-  testing_fans::for_each_cad_fan(rng, {24, 30}, 30, [&](const FanGeometry& g, const std::string& label) {
-    SubdivisionOutcome run;
-    if (!run_subdivision(g, true, &run) || run.stats.floors_raised == 0) return;
-    ++probed;
-    expect_floors_leave_the_enumeration_optimum(g, run, label);
-  });
-  EXPECT_GT(probed, 5);
+  EXPECT_GT(check_probed_fans(4141, {24, 30}, 30, &detail::SubdivisionStats::floors_raised), 5);
 }
 
 // The probes fire also before any direction beats the constrained optimum, in cells that
@@ -143,16 +146,8 @@ TEST(SiteSubdivision, CentresProbedAsFloorsLeaveTheEnumerationOptimum) {
 // constraint are infeasible. The floors leave the optimum, the status and the
 // tie-broken direction the enumeration's.
 TEST(SiteSubdivision, CentresNearTheConstraintProbedAsFloorsLeaveTheEnumerationOptimum) {
-  std::mt19937 rng(5150);
-  int probed = 0;
   // They fire on about one CAD-like fan in a hundred of valence 24 to 40.
-  testing_fans::for_each_cad_fan(rng, {24, 30, 40}, 60, [&](const FanGeometry& g, const std::string& label) {
-    SubdivisionOutcome run;
-    if (!run_subdivision(g, true, &run) || run.stats.floors_raised_unlimited == 0) return;
-    ++probed;
-    expect_floors_leave_the_enumeration_optimum(g, run, label);
-  });
-  EXPECT_GT(probed, 5);
+  EXPECT_GT(check_probed_fans(5150, {24, 30, 40}, 60, &detail::SubdivisionStats::floors_raised_unlimited), 5);
 }
 
 // The pool's exact D at a direction agrees with the reference distance to the link, and
