@@ -19,9 +19,11 @@ void unit_triangle_normals(const std::vector<Triangle>& tris, const std::vector<
 WallTree::WallTree(const TriSurface& wall) {
   const int n = static_cast<int>(wall.triangles.size());
   std::vector<Box> boxes(n);
+  slabs.resize(n);
   tbb::parallel_for(0, n, [&](int f) {
     const Triangle& t = wall.triangles[f];
     boxes[f] = Box::of_triangle(wall.points[t[0]], wall.points[t[1]], wall.points[t[2]]);
+    slabs[f] = DiagonalSlabs::of_triangle(wall.points[t[0]], wall.points[t[1]], wall.points[t[2]]);
   });
   tree.build(boxes);
   unit_triangle_normals(wall.triangles, wall.points, &normal);

@@ -61,6 +61,7 @@
 #include <vector>
 
 #include "blayer/core/surface.h"
+#include "blayer/extruder/diagonal_slabs.h"
 #include "blayer/extruder/extrusion_params.h"
 #include "blayer/extruder/proximity_rays.h"
 #include "blayer/extruder/triangle_bvh.h"
@@ -152,6 +153,7 @@ class FrontChecker {
 
   std::vector<Vec3> soup_;
   std::vector<IndexedTriangle> wall_tris_, cur_tris_, new_tris_;
+  std::vector<DiagonalSlabs> cur_slabs_, new_slabs_;  // of cur_tris_, new_tris_
   std::vector<char> cur_is_wall_;
   const std::vector<int>* layers_ = nullptr;
 
