@@ -190,8 +190,6 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
   new_tris_.resize(nt_);
   cur_is_wall_.assign(nt_, 0);
   if (check_collisions_) {
-    cur_slabs_.resize(nt_);
-    new_slabs_.resize(nt_);
     soup_.resize(static_cast<std::size_t>(nv_) + 2 * static_cast<std::size_t>(nc_));
     std::copy(wall.points.begin(), wall.points.end(), soup_.begin());
     tbb::parallel_for(0, nf_, [&](int f) {
@@ -220,9 +218,8 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
   cur_points_ = &top;
   layers_ = &layers;
   if (k > 0) {
-    cur_tree_.refit_each([&](int f) {
-      const Triangle& t = front_[f];
-      return Box::of_triangle(top[t[0]], top[t[1]], top[t[2]]);
+    cur_tree_.refit_triangles([&](int f, Vec3* c) {
+      for (int i = 0; i < 3; ++i) c[i] = top[front_[f][i]];
     });
     unit_triangle_normals(front_, top, &cur_normal_);
   }
@@ -234,8 +231,6 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
         cur_tris_[f] = {cur_id(t[0]), cur_id(t[1]), cur_id(t[2])};
         cur_is_wall_[f] = (layers[t[0]] == 0 && layers[t[1]] == 0 && layers[t[2]] == 0) ||
                           names_a_point_twice(cur_tris_[f]);
-        const IndexedTriangle& c = cur_tris_[f];
-        if (!cur_is_wall_[f]) cur_slabs_[f] = DiagonalSlabs::of_triangle(soup_[c[0]], soup_[c[1]], soup_[c[2]]);
       });
     }
   }
@@ -272,10 +267,6 @@ void FrontChecker::cells_below(int k, const std::vector<Vec3>& top, const std::v
     FaceGeometry geo[5];
     if (c.n) below_centre_[f] = layer_cell_centre(c, geo);
   });
-}
-
-Box FrontChecker::soup_box(const IndexedTriangle& t) const {
-  return Box::of_triangle(soup_[t[0]], soup_[t[1]], soup_[t[2]]);
 }
 
 void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<Vec3>& next) {
@@ -372,11 +363,9 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
     query_[f] = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
     if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
   });
-  new_tree_.refit_each([&](int f) { return soup_box(new_tris_[f]); });
-  tbb::parallel_for(0, nt_, [&](int f) {
-    if (!tri_grows_[f]) return;  // neither tested nor a partner
-    const IndexedTriangle& t = new_tris_[f];
-    new_slabs_[f] = DiagonalSlabs::of_triangle(soup_[t[0]], soup_[t[1]], soup_[t[2]]);
+  // With the slabs: the trees skip the pairs whose slabs are apart (diagonal_slabs.h).
+  new_tree_.refit_triangles([&](int f, Vec3* c) {
+    for (int i = 0; i < 3; ++i) c[i] = soup_[new_tris_[f][i]];
   });
   for (auto& l : crossing_) l.clear();
   // Every pair is found by descending two trees together (TriangleBvh): the new front
@@ -384,19 +373,15 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   // itself for the pairs with a queried triangle, each pair once.
   new_tree_.mark_nodes(query_, &query_nodes_);
   auto hit = [&](int f) { crossing_.local().push_back(f); };
-  // Slabs apart settle a pair before its exact test (diagonal_slabs.h).
-  const std::vector<DiagonalSlabs>& wall_slabs = wall_->slabs;
   new_tree_.for_each_overlapping_pair(query_, query_nodes_, wall_->tree, [&](int f, int j) {
-    if (new_slabs_[f].apart(wall_slabs[j])) return;
     if (soup_triangles_intersect(soup_, new_tris_[f], wall_tris_[j])) hit(f);
   });
   if (k_ > 0)
     new_tree_.for_each_overlapping_pair(query_, query_nodes_, cur_tree_, [&](int f, int j) {
-      if (cur_is_wall_[j] || new_slabs_[f].apart(cur_slabs_[j])) return;
-      if (soup_triangles_intersect(soup_, new_tris_[f], cur_tris_[j])) hit(f);
+      if (!cur_is_wall_[j] && soup_triangles_intersect(soup_, new_tris_[f], cur_tris_[j])) hit(f);
     });
   new_tree_.for_each_overlapping_pair(query_, query_nodes_, [&](int f, int j) {
-    if (!tri_grows_[f] || !tri_grows_[j] || new_slabs_[f].apart(new_slabs_[j])) return;
+    if (!tri_grows_[f] || !tri_grows_[j]) return;
     if (soup_triangles_intersect(soup_, new_tris_[f], new_tris_[j])) {
       hit(f);
       hit(j);
@@ -474,8 +459,6 @@ void FrontChecker::release() {
   release(wall_tris_);
   release(cur_tris_);
   release(new_tris_);
-  release(cur_slabs_);
-  release(new_slabs_);
   release(cur_normal_);
   own_wall_.reset();
   wall_ = nullptr;

@@ -130,6 +130,7 @@ void TriangleBvh::build(const std::vector<Box>& boxes) {
   nodes_.clear();
   items_.resize(n);
   item_box_.clear();
+  item_slabs_.clear();
   if (n == 0) return;
   for (int i = 0; i < n; ++i) items_[i] = i;
   std::vector<Vec3> centre(n);

@@ -7,7 +7,6 @@
 #include <cmath>
 #include <utility>
 
-#include "blayer/extruder/diagonal_slabs.h"
 #include "blayer/extruder/triangle_bvh.h"
 #include "blayer/quality/filtered_orient3d.h"
 
@@ -346,14 +345,17 @@ std::vector<std::pair<int, int>> find_triangle_intersections(const std::vector<V
                                                              const std::vector<char>* check, std::size_t max_pairs) {
   const int n = static_cast<int>(triangles.size());
   std::vector<Box> boxes(n);
-  std::vector<DiagonalSlabs> slabs(n);
   tbb::parallel_for(0, n, [&](int i) {
     const IndexedTriangle& t = triangles[i];
     boxes[i] = Box::of_triangle(points[t[0]], points[t[1]], points[t[2]]);
-    slabs[i] = DiagonalSlabs::of_triangle(points[t[0]], points[t[1]], points[t[2]]);
   });
   TriangleBvh bvh;
   bvh.build(boxes);
+  // The same boxes again, with the slabs that rule out most pairs of long thin
+  // triangles (diagonal_slabs.h).
+  bvh.refit_triangles([&](int i, Vec3* c) {
+    for (int k = 0; k < 3; ++k) c[k] = points[triangles[i][k]];
+  });
   // Each unordered pair with a flagged triangle is tested once, found by descending the
   // tree against itself (TriangleBvh); pairs of unflagged triangles are not tested.
   const std::vector<char> flagged = check ? *check : std::vector<char>(n, 1);
@@ -361,7 +363,6 @@ std::vector<std::pair<int, int>> find_triangle_intersections(const std::vector<V
   bvh.mark_nodes(flagged, &flagged_nodes);
   tbb::enumerable_thread_specific<std::vector<std::pair<int, int>>> found;
   bvh.for_each_overlapping_pair(flagged, flagged_nodes, [&](int i, int j) {
-    if (slabs[i].apart(slabs[j])) return;  // diagonal_slabs.h
     if (soup_triangles_intersect(points, triangles[i], triangles[j])) found.local().emplace_back(std::min(i, j), std::max(i, j));
   });
   std::vector<std::pair<int, int>> pairs;

@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -18,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "blayer/extruder/diagonal_slabs.h"
 #include "blayer/extruder/triangle_bvh.h"
 
 namespace blayer {
@@ -195,6 +197,108 @@ TEST(TriangleBvhPairs, MixedLongAndSmallBoxesFindEveryOverlapOnce) {
   const std::vector<Box> b = random_boxes(rng, 500);
   expect_same_pairs_as_brute_force(a, b, std::vector<char>(a.size(), 1));
   expect_same_pairs_as_brute_force(a, b, random_mask(rng, static_cast<int>(a.size()), 0.3));
+}
+
+// Triangles as the extruder's CAD fronts have them: slivers across the axes (each a
+// long diagonal of an n x n grid cell, nearly parallel to its neighbours' and a tenth
+// of a cell off it), lifted copies of them and small random triangles.
+using Tri = std::array<Vec3, 3>;
+std::vector<Tri> sliver_triangles(std::mt19937& rng, int n, double lift) {
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  std::vector<Tri> out;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double z = lift + 0.1 * std::sin(0.5 * i + 0.3 * j);
+      const Vec3 a{i + jitter(rng), j + jitter(rng), z}, b{i + 1 + jitter(rng), j + 1 + jitter(rng), z + 0.05};
+      out.push_back({a, b, Vec3{a[0] + 0.5, a[1] + 0.6, z}});
+      out.push_back({a, b, Vec3{a[0] + 0.6, a[1] + 0.5, z + 0.02}});
+    }
+  std::uniform_real_distribution<double> at(0.0, n), small(-0.3, 0.3);
+  for (int k = 0; k < n * n / 4; ++k) {
+    const Vec3 c{at(rng), at(rng), lift + small(rng)};
+    out.push_back({c, c + Vec3{small(rng), small(rng), small(rng)}, c + Vec3{small(rng), small(rng), small(rng)}});
+  }
+  return out;
+}
+
+std::vector<Box> boxes_of(const std::vector<Tri>& t) {
+  std::vector<Box> b;
+  for (const Tri& x : t) b.push_back(Box::of_triangle(x[0], x[1], x[2]));
+  return b;
+}
+
+TriangleBvh slabbed_tree(const std::vector<Tri>& t) {
+  TriangleBvh tree;
+  tree.build(boxes_of(t));
+  tree.refit_triangles([&](int i, Vec3* c) { std::copy(t[i].begin(), t[i].end(), c); });
+  return tree;
+}
+
+// The brute-force pairs without those whose slabs are apart.
+Pairs without_apart(const Pairs& pairs, const std::vector<Tri>& a, const std::vector<Tri>& b) {
+  Pairs out;
+  for (const auto& [i, j] : pairs) {
+    const DiagonalSlabs si = DiagonalSlabs::of_triangle(a[i][0], a[i][1], a[i][2]);
+    const DiagonalSlabs sj = DiagonalSlabs::of_triangle(b[j][0], b[j][1], b[j][2]);
+    if (!si.apart(sj)) out.insert({i, j});
+  }
+  return out;
+}
+
+TEST(TriangleBvhPairs, SlabbedTreesSkipExactlyThePairsWhoseSlabsAreApart) {
+  std::mt19937 rng(23);
+  const std::vector<Tri> wall = sliver_triangles(rng, 14, 0.0), front = sliver_triangles(rng, 14, 0.08);
+  const TriangleBvh tw = slabbed_tree(wall), tf = slabbed_tree(front);
+  const std::vector<Box> bw = boxes_of(wall), bf = boxes_of(front);
+  for (double share : {1.0, 0.3}) {
+    const std::vector<char> wanted = random_mask(rng, static_cast<int>(front.size()), share);
+    std::vector<char> nodes;
+    tf.mark_nodes(wanted, &nodes);
+    Visited two, self;
+    tf.for_each_overlapping_pair(wanted, nodes, tw, [&](int i, int j) { two.add(i, j); });
+    tf.for_each_overlapping_pair(wanted, nodes, [&](int i, int j) { self.add(std::min(i, j), std::max(i, j)); });
+    EXPECT_EQ(two.repeats + self.repeats, 0);
+    const Pairs exact_two = without_apart(brute_pairs(bf, wanted, bw), front, wall);
+    const Pairs exact_self = without_apart(brute_self_pairs(bf, wanted), front, front);
+    EXPECT_TRUE(between(two.pairs, exact_two, without_apart(brute_pairs(grown(bf), wanted, grown(bw)), front, wall)));
+    EXPECT_TRUE(between(self.pairs, exact_self, without_apart(brute_self_pairs(grown(bf), wanted), front, front)));
+    // The slabs did rule pairs out: the boxes alone overlap in many more.
+    EXPECT_LT(2 * exact_two.size(), brute_pairs(bf, wanted, bw).size());
+    EXPECT_LT(exact_self.size() + exact_self.size() / 2, brute_self_pairs(bf, wanted).size());
+  }
+  // A tree refitted by boxes again drops its slabs, and then every box overlap is a pair.
+  TriangleBvh boxed = tf;
+  boxed.refit(bf);
+  const std::vector<char> all(front.size(), 1);
+  std::vector<char> nodes;
+  boxed.mark_nodes(all, &nodes);
+  Visited two;
+  boxed.for_each_overlapping_pair(all, nodes, tw, [&](int i, int j) { two.add(i, j); });
+  EXPECT_TRUE(between(two.pairs, brute_pairs(bf, all, bw), brute_pairs(grown(bf), all, grown(bw))));
+}
+
+TEST(TriangleBvhPairs, TreesBeyondTheSlabLimitKeepNoSlabs) {
+  // Two slivers whose boxes overlap and whose slabs are apart, among kMaxSlabItems
+  // small triangles far from them: past the limit the pair is visited.
+  std::vector<Tri> t = {Tri{Vec3{0, 0, 0}, Vec3{1, 1, 0}, Vec3{1.01, 0.99, 0}},
+                        Tri{Vec3{0.1, -0.1, 0}, Vec3{1.1, 0.9, 0}, Vec3{1.11, 0.89, 0}}};
+  ASSERT_TRUE(DiagonalSlabs::of_triangle(t[0][0], t[0][1], t[0][2])
+                  .apart(DiagonalSlabs::of_triangle(t[1][0], t[1][1], t[1][2])));
+  auto visits_the_slivers = [&] {
+    const TriangleBvh tree = slabbed_tree(t);
+    std::vector<char> marked(t.size(), 0), nodes;
+    marked[0] = 1;
+    tree.mark_nodes(marked, &nodes);
+    Visited self;
+    tree.for_each_overlapping_pair(marked, nodes, [&](int i, int j) { self.add(std::min(i, j), std::max(i, j)); });
+    return self.pairs.count({0, 1}) == 1;
+  };
+  EXPECT_FALSE(visits_the_slivers());  // few items: slabs, the pair is ruled out
+  for (int k = 0; static_cast<int>(t.size()) <= TriangleBvh::kMaxSlabItems; ++k) {
+    const Vec3 c{10.0 + k % 1000, 10.0 + k / 1000, 5.0};
+    t.push_back({c, c + Vec3{0.1, 0, 0}, c + Vec3{0, 0.1, 0}});
+  }
+  EXPECT_TRUE(visits_the_slivers());
 }
 
 // Whether the segment o + t d, t in [0, t_max], meets the box: the slab test with the

@@ -61,7 +61,6 @@
 #include <vector>
 
 #include "blayer/core/surface.h"
-#include "blayer/extruder/diagonal_slabs.h"
 #include "blayer/extruder/extrusion_params.h"
 #include "blayer/extruder/proximity_rays.h"
 #include "blayer/extruder/triangle_bvh.h"
@@ -125,7 +124,6 @@ class FrontChecker {
   void check_acceptance(const std::vector<Vec3>& top, const std::vector<Vec3>& next);
   void cells_below(int k, const std::vector<Vec3>& top, const std::vector<int>& layers);
   void check_intersections(const std::vector<Vec3>& next);
-  Box soup_box(const IndexedTriangle& t) const;
   void build_edge_neighbours(const TriSurface& wall, const ColumnLayout& layout);
 
   void check_symmetry_side(const std::vector<Vec3>& next);
@@ -153,7 +151,6 @@ class FrontChecker {
 
   std::vector<Vec3> soup_;
   std::vector<IndexedTriangle> wall_tris_, cur_tris_, new_tris_;
-  std::vector<DiagonalSlabs> cur_slabs_, new_slabs_;  // of cur_tris_, new_tris_
   std::vector<char> cur_is_wall_;
   const std::vector<int>* layers_ = nullptr;
 

@@ -12,7 +12,6 @@
 #include "blayer/core/ray_triangle.h"
 #include "blayer/core/surface.h"
 #include "blayer/core/symmetry_plane.h"
-#include "blayer/extruder/diagonal_slabs.h"
 #include "blayer/extruder/triangle_bvh.h"
 
 namespace blayer {
@@ -47,13 +46,12 @@ struct ProximityRays {
 void unit_triangle_normals(const std::vector<Triangle>& tris, const std::vector<Vec3>& points,
                            std::vector<Vec3>* out);
 
-// The wall's tree, unit triangle normals and diagonal slabs. They depend on the wall
-// alone, so one serves a whole run: the wall-gap cap of every fan attempt and the
-// checker's wall side (front_checker.h).
+// The wall's tree (with the triangles' diagonal slabs) and unit triangle normals. They
+// depend on the wall alone, so one serves a whole run: the wall-gap cap of every fan
+// attempt and the checker's wall side (front_checker.h).
 struct WallTree {
   TriangleBvh tree;
   std::vector<Vec3> normal;
-  std::vector<DiagonalSlabs> slabs;
 
   explicit WallTree(const TriSurface& wall);
 };

@@ -31,6 +31,7 @@
 #include <tbb/parallel_for.h>
 
 #include "blayer/core/vec3.h"
+#include "blayer/extruder/diagonal_slabs.h"
 
 namespace blayer {
 
@@ -121,7 +122,30 @@ class TriangleBvh {
   template <class BoxOf>
   void refit_each(BoxOf&& box_of) {
     const int n = static_cast<int>(items_.size());
+    item_slabs_.clear();
     tbb::parallel_for(0, n, [&](int i) { item_box_[i] = FloatBox::enclosing(box_of(items_[i])); });
+    refit_nodes();
+  }
+  // The same for triangle items, from their corners (corners_of(item, Vec3 out[3])),
+  // with their diagonal slabs (diagonal_slabs.h) stored next to the boxes in leaf
+  // order: the pair traversals below then skip the pairs whose slabs are apart, when
+  // both trees hold slabs. build, refit and refit_each drop them. A tree of more than
+  // kMaxSlabItems items keeps none: the slabs triple the items' memory, and on large
+  // fronts their traffic costs more than the tests they save (the ONERA M6 571k's
+  // checks took 9 % longer on one thread with them, the perforated block's 7 % fewer
+  // instructions in all).
+  static constexpr int kMaxSlabItems = 200000;
+  template <class CornersOf>
+  void refit_triangles(CornersOf&& corners_of) {
+    const int n = static_cast<int>(items_.size());
+    const bool slabs = n <= kMaxSlabItems;
+    item_slabs_.resize(slabs ? n : 0);
+    tbb::parallel_for(0, n, [&](int i) {
+      Vec3 c[3];
+      corners_of(items_[i], c);
+      item_box_[i] = FloatBox::enclosing(Box::of_triangle(c[0], c[1], c[2]));
+      if (slabs) item_slabs_[i] = DiagonalSlabs::of_triangle(c[0], c[1], c[2]);
+    });
     refit_nodes();
   }
 
@@ -147,7 +171,8 @@ class TriangleBvh {
       for (int i = a.first; i < a.first + a.count; ++i) {
         if (!wanted[items_[i]]) continue;
         for (int j = b.first; j < b.first + b.count; ++j)
-          if (item_box_[i].overlaps(other.item_box_[j])) visit(items_[i], other.items_[j]);
+          if (item_box_[i].overlaps(other.item_box_[j]) && !slabs_apart(i, other, j))
+            visit(items_[i], other.items_[j]);
       }
     };
     auto descend = [&](int a, int b, auto&& push) {
@@ -172,7 +197,8 @@ class TriangleBvh {
                                  Visit&& visit) const {
     if (nodes_.empty() || !node_wanted[0]) return;
     auto pair = [&](int i, int j) {
-      if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j])) visit(items_[i], items_[j]);
+      if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]) && !slabs_apart(i, *this, j))
+        visit(items_[i], items_[j]);
     };
     // Pairs are tested before they are pushed, as above; a node always overlaps itself.
     auto keep = [&](int a, int b, auto&& push) {
@@ -301,6 +327,11 @@ class TriangleBvh {
     return true;
   }
 
+  // Whether leaf positions i of this tree and j of `other` hold slabs that are apart.
+  bool slabs_apart(int i, const TriangleBvh& other, int j) const {
+    return !item_slabs_.empty() && !other.item_slabs_.empty() && item_slabs_[i].apart(other.item_slabs_[j]);
+  }
+
   // Pushes the child pairs of node pair (a, b), a node of `an` and b of `bn`, not both
   // leaves: the inner node with the larger box is split (b when a is a leaf).
   template <class Push>
@@ -319,6 +350,7 @@ class TriangleBvh {
   std::vector<Node> nodes_;
   std::vector<int> items_;
   std::vector<FloatBox> item_box_;  // item_box_[i] encloses boxes[items_[i]]
+  std::vector<DiagonalSlabs> item_slabs_;  // empty, or item i's slabs (refit_triangles)
 };
 
 }  // namespace blayer
