@@ -7,9 +7,10 @@
 // Why: the boxes of long, thin triangles lying across the axes (the planar faces of
 // CAD parts, fronts a layer above them) are mostly empty. Of the envelope check's
 // box-overlapping pairs that share no point, slabs apart settle 68 % on the perforated
-// block, 86 % on the sliver wing, 66 % on the ONERA M6 571k, 40 % on the BWB and 34 %
-// on the 717 wing (default run). A pair sharing a point always overlaps, so its cost
-// is the 12 comparisons that find no gap.
+// block, 86 % on the sliver wing, 40 % on the BWB and 34 % on the 717 wing (default
+// run). A pair sharing a point always overlaps, so its cost is the 12 comparisons that
+// find no gap. The trees hold them (TriangleBvh::refit_triangles) up to a size beyond
+// which their memory traffic costs more than they save.
 //
 // Rounding: every bound is the double sum (or difference) of two exact coordinates,
 // converted to float, both rounded to nearest. That is one non-decreasing function of

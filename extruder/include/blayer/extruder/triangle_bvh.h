@@ -10,7 +10,8 @@
 // cheap next to the normal solve (see bench/extruder). Each leaf item's own box is
 // stored next to it and tested before the item is visited: a leaf's box is the union of
 // up to kLeafSize boxes, so without this most visited items would not overlap the query
-// at all and would each cost an exact pair test.
+// at all and would each cost an exact pair test. Triangle items may also carry their
+// diagonal slabs (refit_triangles, diagonal_slabs.h), which rule out more pairs there.
 //
 // All the overlapping pairs of two trees (a new front against the wall, the current
 // front and itself) are found by descending both together rather than by one query per
