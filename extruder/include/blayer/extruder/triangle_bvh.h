@@ -131,11 +131,13 @@ class TriangleBvh {
   // with their diagonal slabs (diagonal_slabs.h) stored next to the boxes in leaf
   // order: the pair traversals below then skip the pairs whose slabs are apart, when
   // both trees hold slabs. build, refit and refit_each drop them. A tree of more than
-  // kMaxSlabItems items keeps none: the slabs triple the items' memory, and on large
-  // fronts their traffic costs more than the tests they save (kept for every front,
-  // they made the ONERA M6 571k's checks 9 % slower on one thread, where they take
-  // 7.6 % of the instructions off the perforated block's whole run).
-  static constexpr int kMaxSlabItems = 200000;
+  // kMaxSlabItems items keeps none: the slabs take 48 bytes per item (twice the box),
+  // and the checker holds three trees while the run's memory peaks. Kept for every
+  // tree, they made the ONERA M6 571k's checks 9 % slower on one thread (memory
+  // traffic) and lifted the sliver wing's peak from 102 to 110 MB (its 64k-triangle
+  // fronts) for 1.1 % fewer instructions, where they take 7.6 % of the instructions
+  // off the perforated block's run (23k).
+  static constexpr int kMaxSlabItems = 50000;
   template <class CornersOf>
   void refit_triangles(CornersOf&& corners_of) {
     const int n = static_cast<int>(items_.size());
