@@ -218,9 +218,14 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
   cur_points_ = &top;
   layers_ = &layers;
   if (k > 0) {
-    cur_tree_.refit_triangles([&](int f, Vec3* c) {
-      for (int i = 0; i < 3; ++i) c[i] = top[front_[f][i]];
-    });
+    // Layer k - 1's last attempt is normally what was committed: its new front's tree
+    // (boxes and slabs) is then this layer's current front, copied rather than refitted.
+    if (check_collisions_ && new_tree_layer_ == k - 1 && last_attempt_committed(k, top, layers))
+      cur_tree_ = new_tree_;
+    else
+      cur_tree_.refit_triangles([&](int f, Vec3* c) {
+        for (int i = 0; i < 3; ++i) c[i] = top[front_[f][i]];
+      });
     unit_triangle_normals(front_, top, &cur_normal_);
   }
   if (check_collisions_) {
@@ -247,15 +252,18 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
 
 // Centres of the cells of layer k - 1: from the front at its start to `top`, grown
 // where a column has k layers.
+bool FrontChecker::last_attempt_committed(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) const {
+  for (int v = 0; v < nc_; ++v) {
+    const bool grew = layers[v] >= k;
+    if (grew != bool(prev_grows_[v]) || (grew && !(top[v] == prev_next_[v]))) return false;
+  }
+  return true;
+}
+
 void FrontChecker::cells_below(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) {
   // The last attempt of layer k - 1 is normally what was committed; its centres are
   // then the ones wanted.
-  bool last_attempt_committed = true;
-  for (int v = 0; v < nc_ && last_attempt_committed; ++v) {
-    const bool grew = layers[v] >= k;
-    last_attempt_committed = grew == bool(prev_grows_[v]) && (!grew || top[v] == prev_next_[v]);
-  }
-  if (last_attempt_committed) {
+  if (last_attempt_committed(k, top, layers)) {
     below_centre_.swap(centre_);
     return;
   }
@@ -364,9 +372,11 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
     if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
   });
   // With the slabs: the trees skip the pairs whose slabs are apart (diagonal_slabs.h).
-  new_tree_.refit_triangles([&](int f, Vec3* c) {
+  // Only the triangles that moved since the previous attempt (all in the first).
+  new_tree_.refit_triangles_where(&tri_moved_, [&](int f, Vec3* c) {
     for (int i = 0; i < 3; ++i) c[i] = soup_[new_tris_[f][i]];
   });
+  new_tree_layer_ = k_;
   for (auto& l : crossing_) l.clear();
   // Every pair is found by descending two trees together (TriangleBvh): the new front
   // against the wall and the current front for the queried triangles, and against

@@ -277,6 +277,38 @@ TEST(TriangleBvhPairs, SlabbedTreesSkipExactlyThePairsWhoseSlabsAreApart) {
   EXPECT_TRUE(between(two.pairs, brute_pairs(bf, all, bw), brute_pairs(grown(bf), all, grown(bw))));
 }
 
+TEST(TriangleBvhPairs, PartlyRefittedTreesFollowTheMovedTrianglesOnly) {
+  // The checker's repair attempts move a few columns: only their triangles are refitted,
+  // the others keep their boxes and slabs. First on a tree that holds no slabs yet
+  // (built from boxes: every triangle gets them), then on one that does.
+  std::mt19937 rng(29);
+  const std::vector<Tri> wall = sliver_triangles(rng, 12, 0.0);
+  std::vector<Tri> front = sliver_triangles(rng, 12, 0.08);
+  const TriangleBvh tw = slabbed_tree(wall);
+  TriangleBvh tf;
+  tf.build(boxes_of(front));
+  auto corners = [&](int i, Vec3* c) { std::copy(front[i].begin(), front[i].end(), c); };
+  std::vector<char> moved(front.size(), 0);
+  for (int pass = 0; pass < 3; ++pass) {
+    std::fill(moved.begin(), moved.end(), 0);
+    if (pass > 0)
+      for (std::size_t i = 0; i < front.size(); i += 7 + pass) {
+        moved[i] = 1;
+        for (Vec3& p : front[i]) p = p + Vec3{0.3, -0.2, 0.05 * pass};
+      }
+    tf.refit_triangles_where(&moved, corners);
+    const std::vector<char> all(front.size(), 1);
+    std::vector<char> nodes;
+    tf.mark_nodes(all, &nodes);
+    Visited two;
+    tf.for_each_overlapping_pair(all, nodes, tw, [&](int i, int j) { two.add(i, j); });
+    const std::vector<Box> bf = boxes_of(front), bw = boxes_of(wall);
+    EXPECT_TRUE(between(two.pairs, without_apart(brute_pairs(bf, all, bw), front, wall),
+                        without_apart(brute_pairs(grown(bf), all, grown(bw)), front, wall)))
+        << "pass " << pass;
+  }
+}
+
 TEST(TriangleBvhPairs, TreesBeyondTheSlabLimitKeepNoSlabs) {
   // Two slivers whose boxes overlap and whose slabs are apart, among kMaxSlabItems
   // small triangles far from them: past the limit the pair is visited.

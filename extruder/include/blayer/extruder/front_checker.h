@@ -123,6 +123,9 @@ class FrontChecker {
   void check_cells(const std::vector<Vec3>& top, const std::vector<Vec3>& next);
   void check_acceptance(const std::vector<Vec3>& top, const std::vector<Vec3>& next);
   void cells_below(int k, const std::vector<Vec3>& top, const std::vector<int>& layers);
+  // Whether the last check (of layer k - 1) had the grown columns and positions that
+  // the layer starts from (top, layers): the attempt that was committed.
+  bool last_attempt_committed(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) const;
   void check_intersections(const std::vector<Vec3>& next);
   void build_edge_neighbours(const TriSurface& wall, const ColumnLayout& layout);
 
@@ -146,6 +149,7 @@ class FrontChecker {
   std::unique_ptr<WallTree> own_wall_;
   const WallTree* wall_ = nullptr;  // own_wall_ or the run's
   TriangleBvh cur_tree_, new_tree_;
+  int new_tree_layer_ = -1;  // the layer new_tree_ was last refitted for
   std::vector<Vec3> cur_normal_;
   const std::vector<Vec3>* cur_points_ = nullptr;
 

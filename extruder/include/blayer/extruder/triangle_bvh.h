@@ -140,10 +140,19 @@ class TriangleBvh {
   static constexpr int kMaxSlabItems = 50000;
   template <class CornersOf>
   void refit_triangles(CornersOf&& corners_of) {
+    refit_triangles_where(nullptr, corners_of);
+  }
+  // The same for the items with changed[item] != 0 only (all of them when changed is
+  // null); the others keep their boxes and slabs, which must still be theirs (and
+  // exist: after refit_triangles on the same tree).
+  template <class CornersOf>
+  void refit_triangles_where(const std::vector<char>* changed, CornersOf&& corners_of) {
     const int n = static_cast<int>(items_.size());
     const bool slabs = n <= kMaxSlabItems;
-    item_slabs_.resize(slabs ? n : 0);
+    if (slabs && static_cast<int>(item_slabs_.size()) != n) changed = nullptr;  // none kept yet: all
+    if (!changed) item_slabs_.resize(slabs ? n : 0);
     tbb::parallel_for(0, n, [&](int i) {
+      if (changed && !(*changed)[items_[i]]) return;
       Vec3 c[3];
       corners_of(items_[i], c);
       item_box_[i] = FloatBox::enclosing(Box::of_triangle(c[0], c[1], c[2]));
