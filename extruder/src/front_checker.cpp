@@ -250,8 +250,6 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
   }
 }
 
-// Centres of the cells of layer k - 1: from the front at its start to `top`, grown
-// where a column has k layers.
 bool FrontChecker::last_attempt_committed(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) const {
   for (int v = 0; v < nc_; ++v) {
     const bool grew = layers[v] >= k;
@@ -260,6 +258,8 @@ bool FrontChecker::last_attempt_committed(int k, const std::vector<Vec3>& top, c
   return true;
 }
 
+// Centres of the cells of layer k - 1: from the front at its start to `top`, grown
+// where a column has k layers.
 void FrontChecker::cells_below(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) {
   // The last attempt of layer k - 1 is normally what was committed; its centres are
   // then the ones wanted.
@@ -372,8 +372,8 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
     if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
   });
   // With the slabs: the trees skip the pairs whose slabs are apart (diagonal_slabs.h).
-  // Only the triangles that moved since the previous attempt (all in the first).
-  new_tree_.refit_triangles_where(&tri_moved_, [&](int f, Vec3* c) {
+  // Only the triangles that moved since the layer's previous attempt (all in its first).
+  new_tree_.refit_triangles_where(new_tree_layer_ == k_ ? &tri_moved_ : nullptr, [&](int f, Vec3* c) {
     for (int i = 0; i < 3; ++i) c[i] = soup_[new_tris_[f][i]];
   });
   new_tree_layer_ = k_;
