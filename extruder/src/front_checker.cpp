@@ -170,13 +170,10 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
   if (nt_ == nf_ && front_ == wall.triangles) {
     cur_tree_ = wall_->tree;
   } else {
-    std::vector<Box> front_boxes(nt_);
     const std::vector<Vec3>& P = layout_->front.points;
-    tbb::parallel_for(0, nt_, [&](int f) {
-      const Triangle& t = front_[f];
-      front_boxes[f] = Box::of_triangle(P[t[0]], P[t[1]], P[t[2]]);
+    cur_tree_.build_triangles(nt_, [&](int f, Vec3* c) {
+      for (int i = 0; i < 3; ++i) c[i] = P[front_[f][i]];
     });
-    cur_tree_.build(front_boxes);
   }
   new_tree_ = cur_tree_;
   grows_.assign(nc_, 0);

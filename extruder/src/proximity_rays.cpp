@@ -17,14 +17,7 @@ void unit_triangle_normals(const std::vector<Triangle>& tris, const std::vector<
 }
 
 WallTree::WallTree(const TriSurface& wall) {
-  const int n = static_cast<int>(wall.triangles.size());
-  std::vector<Box> boxes(n);
-  tbb::parallel_for(0, n, [&](int f) {
-    const Triangle& t = wall.triangles[f];
-    boxes[f] = Box::of_triangle(wall.points[t[0]], wall.points[t[1]], wall.points[t[2]]);
-  });
-  tree.build(boxes);
-  tree.refit_triangles([&](int f, Vec3* c) {
+  tree.build_triangles(static_cast<int>(wall.triangles.size()), [&](int f, Vec3* c) {
     for (int i = 0; i < 3; ++i) c[i] = wall.points[wall.triangles[f][i]];
   });
   unit_triangle_normals(wall.triangles, wall.points, &normal);

@@ -1,7 +1,6 @@
 #include "blayer/extruder/triangle_intersections.h"
 
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -344,16 +343,9 @@ std::vector<std::pair<int, int>> find_triangle_intersections(const std::vector<V
                                                              const std::vector<IndexedTriangle>& triangles,
                                                              const std::vector<char>* check, std::size_t max_pairs) {
   const int n = static_cast<int>(triangles.size());
-  std::vector<Box> boxes(n);
-  tbb::parallel_for(0, n, [&](int i) {
-    const IndexedTriangle& t = triangles[i];
-    boxes[i] = Box::of_triangle(points[t[0]], points[t[1]], points[t[2]]);
-  });
+  // With the slabs that rule out most pairs of long thin triangles (diagonal_slabs.h).
   TriangleBvh bvh;
-  bvh.build(boxes);
-  // The same boxes again, with the slabs that rule out most pairs of long thin
-  // triangles (diagonal_slabs.h).
-  bvh.refit_triangles([&](int i, Vec3* c) {
+  bvh.build_triangles(n, [&](int i, Vec3* c) {
     for (int k = 0; k < 3; ++k) c[k] = points[triangles[i][k]];
   });
   // Each unordered pair with a flagged triangle is tested once, found by descending the

@@ -111,6 +111,25 @@ class TriangleBvh {
 
   // Builds over boxes[0..n); item ids passed to visitors are indices into boxes.
   void build(const std::vector<Box>& boxes);
+  // Builds over n triangles given by their corners (corners_of(i, Vec3 out[3])), with
+  // their diagonal slabs as refit_triangles keeps them.
+  template <class CornersOf>
+  void build_triangles(int n, CornersOf&& corners_of) {
+    std::vector<Box> boxes(n);
+    tbb::parallel_for(0, n, [&](int i) {
+      Vec3 c[3];
+      corners_of(i, c);
+      boxes[i] = Box::of_triangle(c[0], c[1], c[2]);
+    });
+    build(boxes);
+    if (n > kMaxSlabItems) return;
+    item_slabs_.resize(n);
+    tbb::parallel_for(0, n, [&](int i) {
+      Vec3 c[3];
+      corners_of(items_[i], c);
+      item_slabs_[i] = DiagonalSlabs::of_triangle(c[0], c[1], c[2]);
+    });
+  }
 
   // Replaces the boxes, keeping the tree's layout (boxes.size() must equal the count the
   // tree was built with): O(n), no sorting. Queries stay exact for any boxes, since every
