@@ -119,7 +119,8 @@ struct FanFailures {
 // wall_tree: the run's, built once for all attempts; freed here when the march
 // delivers its mesh, before the output arrays that set the peak memory. precheck: the
 // run's, which carries each round's verdicts to the next (fan_precheck.h). normal_memo:
-// the run's wall normals of the earlier attempts (step_directions.h), or null; gap_memo:
+// the run's wall normals of the earlier attempts (step_directions.h), the cheap ones
+// dropped when the attempt marches, or null; gap_memo:
 // the wall-gap rays of the previous precheck round (column_heights.h), dropped when the
 // attempt marches, or null.
 // shared_layout: the attempt's layout, which the checker reads without a copy.
@@ -162,6 +163,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
     precheck->release();  // this attempt marches: its records would only add to the peak
   }
   if (gap_memo) *gap_memo = WallGapMemo{};  // likewise
+  if (normal_memo) normal_memo->drop_cheap();  // likewise, but for the costly fans
   FrontChecker checker(wall, shared_layout, topo, params, wall_tree->get());
   ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
   LayerAssembler assembler(wall, layout, dirs);

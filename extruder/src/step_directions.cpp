@@ -98,18 +98,17 @@ VertexNormal front_normal(const TriSurface& front, const WallTopology& topo, int
   return n;
 }
 
-// Whether the memo's entry for v's wall point holds v's fan geometry, bit for bit.
-const WallNormalMemo::Entry* memo_entry(const WallNormalMemo& memo, const TriSurface& front,
-                                        const WallTopology& topo, int v) {
-  const int w = topo.wall_point[v];
-  if (w < 0 || w >= static_cast<int>(memo.by_wall_point.size())) return nullptr;
-  const WallNormalMemo::Entry& e = memo.by_wall_point[w];
+// The memo's entry for v's wall point when it holds v's fan geometry, bit for bit, or -1.
+int memo_entry(const WallNormalMemo& memo, const TriSurface& front, const WallTopology& topo, int v) {
+  const int e = memo.entry_of(topo.wall_point[v]);
+  if (e < 0) return -1;
   const VertexFan& fan = topo.fans.fans[v];
-  if (e.points.size() != fan.ring.size() + 1 || e.closed != fan.closed) return nullptr;
-  if (std::memcmp(&e.points[0], &front.points[v], sizeof(Vec3)) != 0) return nullptr;
+  const Vec3* stored = memo.points.data() + memo.start[e];
+  if (memo.start[e + 1] - memo.start[e] != fan.ring.size() + 1 || (memo.closed[e] != 0) != fan.closed) return -1;
+  if (std::memcmp(&stored[0], &front.points[v], sizeof(Vec3)) != 0) return -1;
   for (std::size_t i = 0; i < fan.ring.size(); ++i)
-    if (std::memcmp(&e.points[i + 1], &front.points[fan.ring[i]], sizeof(Vec3)) != 0) return nullptr;
-  return &e;
+    if (std::memcmp(&stored[i + 1], &front.points[fan.ring[i]], sizeof(Vec3)) != 0) return -1;
+  return e;
 }
 
 // The warm starts of one front's solves: each column's state, and per column whether
@@ -140,6 +139,51 @@ struct WarmTally {
   }
 };
 
+// The memo the points with `which` set leave: an entry per wall point that one of them
+// alone stands on (several do at a fan's columns), whose fan the memo stores; the
+// geometry and normals are filled in by the caller's parallel pass. *entry_of_point
+// receives each point's entry, or -1.
+WallNormalMemo memo_layout(const TriSurface& front, const WallTopology& topo, const std::vector<char>& which,
+                           const WallNormalMemo& old, std::vector<int>* entry_of_point) {
+  const int nv = static_cast<int>(front.points.size());
+  int n_wall = 0;
+  for (int v = 0; v < nv; ++v)
+    if (which[v]) n_wall = std::max(n_wall, topo.wall_point[v] + 1);
+  std::vector<int> owner(n_wall, -1);
+  for (int v = 0; v < nv; ++v) {
+    const int w = topo.wall_point[v];
+    if (!which[v] || w < 0 || !old.stores(topo.fans.fans[v].ring.size())) continue;
+    owner[w] = owner[w] == -1 ? v : -2;
+  }
+  WallNormalMemo m;
+  m.reused = old.reused;
+  m.solved = old.solved;
+  m.keep_cheap = old.keep_cheap;
+  entry_of_point->assign(nv, -1);
+  m.start.push_back(0);
+  for (int w = 0; w < n_wall; ++w) {
+    const int v = owner[w];
+    if (v < 0) continue;
+    (*entry_of_point)[v] = static_cast<int>(m.wall_point.size());
+    m.wall_point.push_back(w);
+    m.start.push_back(m.start.back() + topo.fans.fans[v].ring.size() + 1);
+  }
+  m.points.resize(m.start.back());
+  m.closed.resize(m.wall_point.size());
+  m.normal.resize(m.wall_point.size());
+  return m;
+}
+
+void store_in_memo(const TriSurface& front, const WallTopology& topo, int v, const VertexNormal& n, int e,
+                   WallNormalMemo* m) {
+  const VertexFan& fan = topo.fans.fans[v];
+  Vec3* out = m->points.data() + m->start[e];
+  out[0] = front.points[v];
+  for (std::size_t i = 0; i < fan.ring.size(); ++i) out[i + 1] = front.points[fan.ring[i]];
+  m->closed[e] = fan.closed;
+  m->normal[e] = n;
+}
+
 // plain_fan_normal for the points with `which` set (the others keep the status of an
 // empty fan), through the memo when one is given.
 std::vector<VertexNormal> plain_fan_normals(const TriSurface& front, const WallTopology& topo,
@@ -149,40 +193,35 @@ std::vector<VertexNormal> plain_fan_normals(const TriSurface& front, const WallT
   std::vector<VertexNormal> out(nv);
   for (VertexNormal& n : out) n.status = NormalStatus::kDegenerateFan;
   std::vector<char> solved(nv, 0);
+  std::vector<int> entry_of_point;
+  WallNormalMemo next;
+  if (memo) next = memo_layout(front, topo, which, *memo, &entry_of_point);
   parallel_vertices(nv, [&](int v) {
     if (!which[v]) return;
-    const WallNormalMemo::Entry* e = memo ? memo_entry(*memo, front, topo, v) : nullptr;
-    if (e) {
-      out[v] = e->normal;
-      return;
+    const int e = memo ? memo_entry(*memo, front, topo, v) : -1;
+    if (e >= 0) {
+      out[v] = memo->normal[e];
+    } else {
+      // A column on the symmetry plane is warm-started on its mirrored fan only
+      // (compute_step_directions), whose sites its warm start names.
+      const bool warmed = warm && !topo.on_plane[v];
+      ColumnWarmStart w = warmed ? warm->enter(v) : ColumnWarmStart{};
+      out[v] = plain_fan_normal(front, topo, v, method, &w);
+      if (warmed) warm->leave(v, w, out[v]);
+      solved[v] = 1;
     }
-    // A column on the symmetry plane is warm-started on its mirrored fan only
-    // (compute_step_directions), whose sites its warm start names.
-    const bool warmed = warm && !topo.on_plane[v];
-    ColumnWarmStart w = warmed ? warm->enter(v) : ColumnWarmStart{};
-    out[v] = plain_fan_normal(front, topo, v, method, &w);
-    if (warmed) warm->leave(v, w, out[v]);
-    solved[v] = 1;
+    if (memo && entry_of_point[v] >= 0) store_in_memo(front, topo, v, out[v], entry_of_point[v], &next);
   });
   if (!memo) return out;
-  // Stored after the parallel pass, which only reads the memo.
   for (int v = 0; v < nv; ++v) {
     if (!which[v]) continue;
-    if (!solved[v]) {
-      ++memo->reused;
-      continue;
+    if (solved[v]) {
+      ++next.solved;
+    } else {
+      ++next.reused;
     }
-    ++memo->solved;
-    const VertexFan& fan = topo.fans.fans[v];
-    const int w = topo.wall_point[v];
-    if (fan.ring.size() < kMemoMinValence || w < 0) continue;
-    if (w >= static_cast<int>(memo->by_wall_point.size())) memo->by_wall_point.resize(w + 1);
-    WallNormalMemo::Entry& e = memo->by_wall_point[w];
-    e.points.assign(1, front.points[v]);
-    for (int r : fan.ring) e.points.push_back(front.points[r]);
-    e.closed = fan.closed;
-    e.normal = out[v];
   }
+  *memo = std::move(next);
   return out;
 }
 
@@ -220,6 +259,30 @@ bool turn_to_visible(const StepDirections& d, const WallTopology& topo, int v, c
 }
 
 }  // namespace
+
+int WallNormalMemo::entry_of(int w) const {
+  const auto it = std::lower_bound(wall_point.begin(), wall_point.end(), w);
+  return it != wall_point.end() && *it == w ? static_cast<int>(it - wall_point.begin()) : -1;
+}
+
+void WallNormalMemo::drop_cheap() {
+  keep_cheap = false;
+  WallNormalMemo kept;
+  kept.start.push_back(0);
+  for (std::size_t e = 0; e < wall_point.size(); ++e) {
+    if (start[e + 1] - start[e] < kMemoMinValence + 1) continue;
+    kept.wall_point.push_back(wall_point[e]);
+    kept.points.insert(kept.points.end(), points.begin() + start[e], points.begin() + start[e + 1]);
+    kept.start.push_back(kept.points.size());
+    kept.closed.push_back(closed[e]);
+    kept.normal.push_back(normal[e]);
+  }
+  wall_point = std::move(kept.wall_point);
+  start = std::move(kept.start);
+  points = std::move(kept.points);
+  closed = std::move(kept.closed);
+  normal = std::move(kept.normal);
+}
 
 VertexNormal surface_point_normal(const TriSurface& s, const WallTopology& topo, int v, NormalMethod method) {
   return front_normal(s, topo, v, method);

@@ -189,8 +189,9 @@ TEST(StepDirections, SmoothingNeverLowersVisibilityBelowTheRawDirection) {
 }
 
 // The memo of a run's wall normals: a point's stored normal is taken while its fan is
-// bitwise unchanged, and solved again (to the memo-free answer) once a ring point moves.
-// Only fans of kMemoMinValence or more are stored: the uv sphere's two poles (16).
+// bitwise unchanged, and solved again (to the memo-free answer) once a point of its fan
+// moves. Every fan is stored; drop_cheap keeps only those of kMemoMinValence or more
+// triangles: the uv sphere's two poles (16).
 TEST(StepDirections, MemoReusesAPointsNormalOnlyWhileItsFanIsUnchanged) {
   TriSurface wall = test_surfaces::uv_sphere(8, 16, 1.0, 0.0);
   const WallTopology topo = build_wall_topology(wall);
@@ -202,21 +203,31 @@ TEST(StepDirections, MemoReusesAPointsNormalOnlyWhileItsFanIsUnchanged) {
   auto same = [](const StepDirections& a, const StepDirections& b) {
     return a.n == b.n && a.visibility == b.visibility && a.ok == b.ok;
   };
+  const long n = topo.n_points();
   WallNormalMemo memo;
   EXPECT_TRUE(same(compute_step_directions(wall, topo, topo.used, p, nullptr, &memo),
                    compute_step_directions(wall, topo, topo.used, p)));
   EXPECT_EQ(memo.reused, 0);
+  EXPECT_EQ(memo.solved, n);
   EXPECT_TRUE(same(compute_step_directions(wall, topo, topo.used, p, nullptr, &memo),
                    compute_step_directions(wall, topo, topo.used, p)));
-  EXPECT_EQ(memo.reused, 2);
-  // One ring point of the first pole moves: that pole is solved again, the other reused.
-  wall.points[topo.fans.fans[poles[0]].ring[0]][2] *= 1.01;
+  EXPECT_EQ(memo.reused, n);
+  // One ring point of the first pole moves: the fans that hold it (its own, the pole's
+  // and those of its other neighbours) are solved again, every other one is reused.
+  const int moved_point = topo.fans.fans[poles[0]].ring[0];
+  const long holding = 1 + static_cast<long>(topo.fans.fans[moved_point].ring.size());
+  wall.points[moved_point][2] *= 1.01;
   const long solved = memo.solved;
   const StepDirections moved = compute_step_directions(wall, topo, topo.used, p, nullptr, &memo);
-  const StepDirections fresh = compute_step_directions(wall, topo, topo.used, p);
-  EXPECT_TRUE(same(moved, fresh));
-  EXPECT_EQ(memo.reused, 3);
-  EXPECT_EQ(memo.solved - solved, topo.n_points() - 1);
+  EXPECT_TRUE(same(moved, compute_step_directions(wall, topo, topo.used, p)));
+  EXPECT_EQ(memo.solved - solved, holding);
+  EXPECT_EQ(memo.reused, 2 * n - holding);
+  // Only the poles survive drop_cheap.
+  memo.drop_cheap();
+  const long reused = memo.reused;
+  EXPECT_TRUE(same(compute_step_directions(wall, topo, topo.used, p, nullptr, &memo),
+                   compute_step_directions(wall, topo, topo.used, p)));
+  EXPECT_EQ(memo.reused - reused, 2);
 }
 
 TEST(StepDirections, RepairTurnsAFailingColumnTowardsItsNeighbours) {

@@ -41,19 +41,30 @@ struct PrescribedDirections {
 // (extrude_layers.cpp marches again after fan points fall back), by wall point. A point
 // whose fan geometry (the point, its ring's points in order, and whether the ring
 // closes) is bitwise the one stored takes the stored normal, a pure function of that
-// geometry; the others are solved and stored. Only fans of at least kMemoMinValence
-// triangles are kept: smaller ones solve in microseconds.
+// geometry; the others are solved. Each call stores the fans of its points anew: every
+// fan while the memo keeps the cheap ones, since the precheck rounds rebuild the whole
+// layout around a few points that fell back and each round solved every wall normal
+// again (on the ONERA M6 571k, half a second of the second round); a marching attempt
+// keeps only the fans of at least kMemoMinValence triangles (drop_cheap): smaller ones
+// solve in microseconds, and the memo would otherwise add to the march's memory. The
+// entries lie in a few flat arrays, so that dropping them returns their memory.
+constexpr std::size_t kMemoMinValence = 10;
 struct WallNormalMemo {
-  struct Entry {
-    std::vector<Vec3> points;  // the point, then its ring
-    bool closed = false;
-    VertexNormal normal;
-  };
-  std::vector<Entry> by_wall_point;
+  std::vector<int> wall_point;         // per entry, ascending
+  std::vector<std::size_t> start;      // per entry, into points, with a final end
+  std::vector<Vec3> points;            // per entry: the point, then its ring
+  std::vector<char> closed;            // per entry
+  std::vector<VertexNormal> normal;    // per entry
   long reused = 0;  // normals taken from the memo, over the run
   long solved = 0;  // fan normals solved while a memo was given
+  bool keep_cheap = true;  // whether fans below kMemoMinValence triangles are stored
+  // The entry of wall point w, or -1.
+  int entry_of(int w) const;
+  // Frees the entries of fans below kMemoMinValence triangles and stores no more of
+  // them.
+  void drop_cheap();
+  bool stores(std::size_t n_triangles) const { return keep_cheap || n_triangles >= kMemoMinValence; }
 };
-constexpr std::size_t kMemoMinValence = 10;
 
 // warm (optional): most-normal warm starts carried from front to front (most_normal.h),
 // one per column, for the recomputed directions. A front differs little from the one
