@@ -14,6 +14,22 @@ struct EdgeUse {
   bool forward;
 };
 
+// Stable sort of one point's uses by their upper point: an insertion sort, since a
+// point has a few edges (std::stable_sort took a buffer from the heap for each point);
+// the library's for the rare point with many.
+void sort_by_hi(EdgeUse* first, EdgeUse* last) {
+  if (last - first > 32) {
+    std::stable_sort(first, last, [](const EdgeUse& x, const EdgeUse& y) { return x.hi < y.hi; });
+    return;
+  }
+  for (EdgeUse* i = first + 1; i < last; ++i) {
+    const EdgeUse x = *i;
+    EdgeUse* j = i;
+    for (; j > first && (j - 1)->hi > x.hi; --j) *j = *(j - 1);
+    *j = x;
+  }
+}
+
 EdgeKind classify(const SurfaceEdge& e, int n_forward) {
   if (e.n_uses == 1) return EdgeKind::kBoundary;
   if (e.n_uses > 2) return EdgeKind::kNonManifold;
@@ -42,11 +58,12 @@ EdgeTopology build_edge_topology(const TriSurface& s) {
     }
 
   EdgeTopology out;
+  // A closed surface has half as many edges as uses; an open one a few more.
+  out.edges.reserve(uses.size() / 2 + 16);
   [[maybe_unused]] std::size_t n_uses = 0;
   for (int lo = 0; lo < nv; ++lo) {
     // Stable: uses of one edge stay in triangle order.
-    std::stable_sort(uses.begin() + start[lo], uses.begin() + start[lo + 1],
-                     [](const EdgeUse& x, const EdgeUse& y) { return x.hi < y.hi; });
+    sort_by_hi(uses.data() + start[lo], uses.data() + start[lo + 1]);
     for (int i = start[lo]; i < start[lo + 1];) {
       SurfaceEdge e;
       e.lo = lo;

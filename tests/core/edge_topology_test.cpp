@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
+#include <random>
 #include <utility>
 
 #include "analytic_surfaces.h"
@@ -93,6 +95,46 @@ TEST(EdgeTopology, OpenSurfacesMatchBruteForce) {
   s.triangles.erase(s.triangles.begin(), s.triangles.begin() + 18);  // one face of the box
   expect_counts_match_brute_force(s);
   EXPECT_GT(build_edge_topology(s).n_boundary, 0);
+}
+
+// Every edge's first two users, in ascending triangle order, with their directions,
+// against a map from each edge to all its uses in triangle order. Random triangles on
+// few points give edges of many uses; a pole of 50 triangles (its point first, so it is
+// the lower point of all its edges) takes the sort for points of many edges, the others
+// the one for few.
+TEST(EdgeTopology, EdgeUsersAreTheFirstTwoInTriangleOrder) {
+  TriSurface s;
+  const int n_pole = 50;
+  s.points.resize(1 + n_pole + 12);
+  for (int j = 0; j < n_pole; ++j) s.triangles.push_back({0, 1 + j, 1 + (j + 1) % n_pole});
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> pick(1, n_pole + 12);
+  for (int f = 0; f < 400; ++f) {
+    const int a = pick(rng), b = pick(rng), c = pick(rng);
+    if (a != b && b != c && a != c) s.triangles.push_back({a, b, c});
+  }
+  std::shuffle(s.triangles.begin(), s.triangles.end(), rng);
+  std::map<std::pair<int, int>, std::vector<std::pair<int, bool>>> uses;
+  for (int f = 0; f < static_cast<int>(s.triangles.size()); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.triangles[f][k], b = s.triangles[f][(k + 1) % 3];
+      uses[{std::min(a, b), std::max(a, b)}].push_back({f, a < b});
+    }
+  const EdgeTopology e = build_edge_topology(s);
+  ASSERT_EQ(e.edges.size(), uses.size());
+  auto it = uses.begin();
+  int many = 0;
+  for (const SurfaceEdge& edge : e.edges) {
+    const auto& [key, list] = *it++;
+    ASSERT_EQ(std::make_pair(edge.lo, edge.hi), key);
+    ASSERT_EQ(edge.n_uses, static_cast<int>(list.size()));
+    many += edge.n_uses > 2;
+    for (int u = 0; u < std::min(2, edge.n_uses); ++u) {
+      EXPECT_EQ(edge.triangle[u], list[u].first);
+      EXPECT_EQ(edge.forward[u], list[u].second);
+    }
+  }
+  EXPECT_GT(many, 0);
 }
 
 }  // namespace
