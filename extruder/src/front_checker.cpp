@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "blayer/core/assert.h"
 #include "blayer/core/edge_topology.h"
@@ -107,35 +108,43 @@ void FrontChecker::build_edge_neighbours(const TriSurface& wall, const ColumnLay
   skip_acceptance_.assign(nf_, 0);
   for (int f = 0; f < nf_; ++f) skip_acceptance_[f] = elements_[f].split_at >= 0;
   std::vector<char> open_wall_edge(3 * static_cast<std::size_t>(nf_), 0);
-  for (const SurfaceEdge& edge : build_edge_topology(wall).edges)
+  const EdgeTopology wall_edges = build_edge_topology(wall);
+  for (const SurfaceEdge& edge : wall_edges.edges)
     if (edge.kind == EdgeKind::kBoundary)
       for (int e = 0; e < 3; ++e) {
         const Triangle& t = wall.triangles[edge.triangle[0]];
         if (std::min(t[e], t[(e + 1) % 3]) == edge.lo && std::max(t[e], t[(e + 1) % 3]) == edge.hi)
           open_wall_edge[3 * edge.triangle[0] + e] = 1;
       }
-  const TriSurface cells{layout.front.points, acc_tris_};
-  for (const SurfaceEdge& edge : build_edge_topology(cells).edges) {
-    const int f = edge.triangle[0], g = edge.triangle[1];
-    const int sf = slot_of(f, edge.lo, edge.hi);
-    if (edge.kind == EdgeKind::kBoundary && open_wall_edge[sf]) edge_neighbour_[sf] = -1;
-    if (edge.kind != EdgeKind::kManifold || skip_acceptance_[f] || skip_acceptance_[g]) continue;
-    const int sg = slot_of(g, edge.lo, edge.hi);
-    edge_neighbour_[sf] = g;
-    edge_neighbour_[sg] = f;
-    side_slot_[sf] = side_slot_[sg] = std::min(sf, sg);  // the smaller triangle's
-    if (!(limits_.max_non_orthogonality_deg > 0.0)) continue;
-    // The angle is the same whichever triangle comes first (normal and centre line flip
-    // together).
-    auto corners = [&](int t) {
-      const Triangle& w = wall.triangles[t];
-      return std::array<Vec3, 3>{wall.points[w[0]], wall.points[w[1]], wall.points[w[2]]};
-    };
-    const double inherited = wall_edge_non_orthogonality_deg(corners(f), corners(g), layout.front.points[edge.lo],
-                                                             layout.front.points[edge.hi]);
-    side_non_orth_limit_[std::min(sf, sg)] =
-        inherited_non_orthogonality_limit_deg(limits_.max_non_orthogonality_deg, inherited);
-  }
+  // Without fans the cells' triangles are the wall's, on the same point ids.
+  std::optional<EdgeTopology> own;
+  if (acc_tris_ != wall.triangles) own = build_edge_topology(TriSurface{layout.front.points, acc_tris_});
+  const std::vector<SurfaceEdge>& edges = own ? own->edges : wall_edges.edges;
+  // Each triangle's edge slot belongs to one edge: the edges write apart.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edges.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const SurfaceEdge& edge = edges[i];
+      const int f = edge.triangle[0], g = edge.triangle[1];
+      const int sf = slot_of(f, edge.lo, edge.hi);
+      if (edge.kind == EdgeKind::kBoundary && open_wall_edge[sf]) edge_neighbour_[sf] = -1;
+      if (edge.kind != EdgeKind::kManifold || skip_acceptance_[f] || skip_acceptance_[g]) continue;
+      const int sg = slot_of(g, edge.lo, edge.hi);
+      edge_neighbour_[sf] = g;
+      edge_neighbour_[sg] = f;
+      side_slot_[sf] = side_slot_[sg] = std::min(sf, sg);  // the smaller triangle's
+      if (!(limits_.max_non_orthogonality_deg > 0.0)) continue;
+      // The angle is the same whichever triangle comes first (normal and centre line
+      // flip together).
+      auto corners = [&](int t) {
+        const Triangle& w = wall.triangles[t];
+        return std::array<Vec3, 3>{wall.points[w[0]], wall.points[w[1]], wall.points[w[2]]};
+      };
+      const double inherited = wall_edge_non_orthogonality_deg(corners(f), corners(g), layout.front.points[edge.lo],
+                                                               layout.front.points[edge.hi]);
+      side_non_orth_limit_[std::min(sf, sg)] =
+          inherited_non_orthogonality_limit_deg(limits_.max_non_orthogonality_deg, inherited);
+    }
+  });
 }
 
 FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, bool check_collisions)
