@@ -52,20 +52,25 @@ int FanPrecheck::Round::find(const std::uint64_t* t, std::size_t n, std::uint64_
 
 FanPrecheck::Round FanPrecheck::round_of(const TriSurface& wall, const ColumnLayout& layout,
                                          const WallPlanes& planes, const StepDirections& dirs, const ColumnPlan& plan,
-                                         const ExtrusionParams& params) {
+                                         const ExtrusionParams& params, const std::vector<char>& needed) {
   const int nc = layout.n_columns();
   // Each column's run has a known length (its point, its layer count, three words per
-  // layer): laid out first, then the columns are filled and hashed in parallel.
+  // layer; none for a column no checked element holds): laid out first, then the
+  // columns are filled and hashed in parallel.
   std::vector<int> grown(nc);
   Round r;
   r.run_start.assign(static_cast<std::size_t>(nc) + 1, 0);
   for (int c = 0; c < nc; ++c) {
     grown[c] = dirs.ok[c] ? std::min(plan.planned_layers[c], plan.n_layers) : 0;
-    r.run_start[c + 1] = r.run_start[c] + 2 + 3 * static_cast<std::size_t>(grown[c]);
+    r.run_start[c + 1] = r.run_start[c] + (needed[c] ? 2 + 3 * static_cast<std::size_t>(grown[c]) : 0);
   }
   r.runs.resize(r.run_start[nc]);
   r.by_hash.resize(nc);
   tbb::parallel_for(0, nc, [&](int c) {
+    if (!needed[c]) {
+      r.by_hash[c] = {0, -1};
+      return;
+    }
     const int w = layout.wall_point[c];
     const int m = grown[c];
     std::uint64_t* out = r.runs.data() + r.run_start[c];
@@ -80,10 +85,14 @@ FanPrecheck::Round FanPrecheck::round_of(const TriSurface& wall, const ColumnLay
     }
     r.by_hash[c] = {hash_words(r.runs.data() + r.run_start[c], r.run_start[c + 1] - r.run_start[c]), c};
   });
+  r.by_hash.erase(std::remove_if(r.by_hash.begin(), r.by_hash.end(), [](const auto& h) { return h.second < 0; }),
+                  r.by_hash.end());
   return r;
 }
 
-int FanPrecheck::Round::grown(int c) const { return static_cast<int>(runs[run_start[c] + 1]); }
+int FanPrecheck::Round::grown(int c) const {
+  return run_start[c + 1] == run_start[c] ? 0 : static_cast<int>(runs[run_start[c] + 1]);
+}
 
 Vec3 FanPrecheck::Round::top(int c, int k) const {
   const std::uint64_t* t = runs.data() + run_start[c] + 2 + 3 * k;
@@ -105,7 +114,7 @@ std::vector<signed char> FanPrecheck::passed_before(const ColumnLayout& layout, 
   tbb::parallel_for(0, nc, [&](int c) {
     const std::size_t begin = current.run_start[c], n = current.run_start[c + 1] - begin;
     const std::uint64_t* t = current.runs.data() + begin;
-    previous_run[c] = previous_.find(t, n, hash_words(t, n));
+    previous_run[c] = n == 0 ? -1 : previous_.find(t, n, hash_words(t, n));
   });
   std::vector<signed char> passed(checked.size(), 0);
   tbb::parallel_for(std::size_t{0}, checked.size(), [&](std::size_t x) {
@@ -131,7 +140,12 @@ std::vector<int> FanPrecheck::failing_points(const TriSurface& wall, const Colum
     for (int j = 0; j < 3 && !fan; ++j) fan = layout.in_fan[e.column[j]];
     if (fan) checked.push_back(i);
   }
-  Round current = round_of(wall, layout, planes, dirs, plan, params);
+  // Only the columns of the checked elements are followed (on the ONERA M6 571k, 470
+  // of 286,000 columns are fan columns; following them all took 0.2 s a round).
+  std::vector<char> needed(nc, 0);
+  for (std::size_t i : checked)
+    for (int j = 0; j < layout.elements[i].n_columns(); ++j) needed[layout.elements[i].column[j]] = 1;
+  Round current = round_of(wall, layout, planes, dirs, plan, params, needed);
   // 1: passed as the previous round's; 0: to be checked; -1: failed or left unchecked.
   std::vector<signed char> passed = passed_before(layout, checked, current);
   reused_ = static_cast<std::size_t>(std::count(passed.begin(), passed.end(), 1));

@@ -57,15 +57,18 @@ class FanPrecheck {
   struct Round {
     std::vector<std::uint64_t> runs;                        // the trajectories, concatenated
     std::vector<std::size_t> run_start;                     // per column, with a final end
-    std::vector<std::pair<std::uint64_t, int>> by_hash;     // (hash, column), sorted once kept
+    std::vector<std::pair<std::uint64_t, int>> by_hash;     // (hash, column) of the followed ones, sorted once kept
     std::vector<ElementKey> passed;                         // sorted
     // A column of this round with trajectory [t, t + n), or -1.
     int find(const std::uint64_t* t, std::size_t n, std::uint64_t hash) const;
     int grown(int c) const;
     Vec3 top(int c, int k) const;
   };
+  // The trajectories of the columns with `needed` set; the others have empty runs and
+  // no hash.
   static Round round_of(const TriSurface& wall, const ColumnLayout& layout, const WallPlanes& planes,
-                        const StepDirections& dirs, const ColumnPlan& plan, const ExtrusionParams& params);
+                        const StepDirections& dirs, const ColumnPlan& plan, const ExtrusionParams& params,
+                        const std::vector<char>& needed);
   // The element's key with its columns' trajectory ids: (*run)[c], or the columns
   // themselves (this round's ids) when run is null.
   static ElementKey key_of(const LayerElement& e, const std::vector<int>* run);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "blayer/core/vertex_fans.h"
@@ -19,13 +20,15 @@ namespace blayer {
 namespace {
 
 struct BoxWithFans {
-  TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, 3);
+  TriSurface box;
   ColumnLayout layout = build_column_layout(box, build_vertex_fans(box), FanParams{60.0, 30.0},
                                             NormalMethod::kMostNormal, std::vector<char>(box.points.size(), 0));
   WallTopology topo = build_column_topology(layout);
   WallPlanes planes{box, layout, topo};
   ExtrusionParams params;
   ColumnPlan plan = plan_with_first_height(0.05);
+
+  explicit BoxWithFans(int subdivisions = 3) : box(test_surfaces::box({0, 0, 0}, {1, 1, 1}, subdivisions)) {}
 
   // Four layers growing by 1.5 from h1 on every column.
   ColumnPlan plan_with_first_height(double h1) const {
@@ -116,6 +119,44 @@ TEST(FanPrecheck, LastRoundFindsAFailureWhereAFullCheckDoesAndKeepsNothing) {
   EXPECT_GT(not_last.reused_elements(), 0u);
 
   EXPECT_TRUE(rounds.failing_points(b.box, b.layout, b.planes, straight, b.plan, b.params, true).empty());
+}
+
+// On a finer box the columns in the middle of a face belong to no fan element: the
+// precheck does not follow them, and turning one changes no verdict, while a column
+// beside an edge still fails its fans as a fresh check finds.
+TEST(FanPrecheck, ColumnsOfNoFanElementChangeNoVerdict) {
+  const BoxWithFans b(8);
+  const StepDirections straight = b.directions();
+  auto top_column_near = [&](double x, double y) {
+    int best = -1;
+    for (int c = 0; c < b.layout.n_columns(); ++c) {
+      const Vec3& p = b.layout.front.points[c];
+      if (b.layout.in_fan[c] || p[2] != 1.0) continue;
+      if (best < 0 || std::hypot(p[0] - x, p[1] - y) < std::hypot(b.layout.front.points[best][0] - x,
+                                                                  b.layout.front.points[best][1] - y))
+        best = c;
+    }
+    return best;
+  };
+  const int centre = top_column_near(0.5, 0.5), beside_edge = top_column_near(0.1, 0.3);
+  ASSERT_GE(centre, 0);
+  for (std::size_t f = 0; f < b.box.triangles.size(); ++f) {
+    const Triangle& t = b.layout.front.triangles[f];
+    if (std::find(t.begin(), t.end(), centre) == t.end()) continue;
+    for (int c : t) ASSERT_FALSE(b.layout.in_fan[c]) << "the centre column lies in a fan element";
+  }
+  StepDirections turned_centre = straight, turned_edge = straight;
+  turned_centre.n[centre] = Vec3{0.0, 0.0, -1.0};
+  turned_edge.n[beside_edge] = Vec3{0.0, 0.0, -1.0};
+  ASSERT_FALSE(b.fresh(turned_edge).empty());
+
+  FanPrecheck rounds;
+  EXPECT_EQ(rounds.failing_points(b.box, b.layout, b.planes, turned_edge, b.plan, b.params), b.fresh(turned_edge));
+  const std::vector<int> second =
+      rounds.failing_points(b.box, b.layout, b.planes, turned_centre, b.plan, b.params);
+  EXPECT_TRUE(second.empty());
+  EXPECT_EQ(second, b.fresh(straight));
+  EXPECT_GT(rounds.reused_elements(), 0u);
 }
 
 }  // namespace
