@@ -4,6 +4,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstring>
 #include <optional>
 
 #include "blayer/core/assert.h"
@@ -180,9 +182,17 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
     cur_tree_ = wall_->tree;
   } else {
     const std::vector<Vec3>& P = layout_->front.points;
-    cur_tree_.build_triangles(nt_, [&](int f, Vec3* c) {
+    auto corners = [&](int f, Vec3* c) {
       for (int i = 0; i < 3; ++i) c[i] = P[front_[f][i]];
-    });
+    };
+    if (front_starts_with_wall(wall)) {
+      // The fans' strips and split triangles get a tree of their own under the wall's.
+      TriangleBvh extra;
+      extra.build_triangles(nt_ - nf_, [&](int i, Vec3* c) { corners(nf_ + i, c); });
+      cur_tree_.join(wall_->tree, extra);
+    } else {
+      cur_tree_.build_triangles(nt_, corners);
+    }
   }
   new_tree_ = cur_tree_;
   grows_.assign(nc_, 0);
@@ -203,6 +213,18 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
       wall_tris_[f] = {t[0], t[1], t[2]};
     });
   }
+}
+
+bool FrontChecker::front_starts_with_wall(const TriSurface& wall) const {
+  if (nt_ < nf_) return false;
+  const std::vector<Vec3>& P = layout_->front.points;
+  std::atomic<bool> same{true};
+  tbb::parallel_for(tbb::blocked_range<int>(0, nf_), [&](const tbb::blocked_range<int>& r) {
+    for (int f = r.begin(); f != r.end() && same.load(std::memory_order_relaxed); ++f)
+      for (int i = 0; i < 3; ++i)
+        if (std::memcmp(&P[front_[f][i]], &wall.points[wall.triangles[f][i]], sizeof(Vec3)) != 0) same = false;
+  });
+  return same;
 }
 
 ProximityRays FrontChecker::wall_rays() const {

@@ -143,6 +143,47 @@ void TriangleBvh::build(const std::vector<Box>& boxes) {
   for (int i = 0; i < n; ++i) item_box_[i] = FloatBox::enclosing(boxes[items_[i]]);
 }
 
+void TriangleBvh::join(const TriangleBvh& base, const TriangleBvh& extra) {
+  if (extra.nodes_.empty() || base.nodes_.empty()) {
+    const bool from_base = extra.nodes_.empty();
+    *this = from_base ? base : extra;
+    if (!from_base)
+      for (int& item : items_) item += static_cast<int>(base.items_.size());
+    return;
+  }
+  const int n_base = static_cast<int>(base.items_.size());
+  const int base_nodes = static_cast<int>(base.nodes_.size());
+  nodes_.clear();
+  nodes_.reserve(1 + base.nodes_.size() + extra.nodes_.size());
+  Node root;
+  root.box = base.nodes_[0].box;
+  root.box.unite(extra.nodes_[0].box);
+  root.first = 1;
+  root.left_nodes = base_nodes;
+  nodes_.push_back(root);
+  // Inner nodes name their left child by index, leaves their first item.
+  for (Node nd : base.nodes_) {
+    if (nd.count == 0) nd.first += 1;
+    nodes_.push_back(nd);
+  }
+  for (Node nd : extra.nodes_) {
+    nd.first += nd.count == 0 ? 1 + base_nodes : n_base;
+    nodes_.push_back(nd);
+  }
+  items_ = base.items_;
+  items_.reserve(base.items_.size() + extra.items_.size());
+  for (int item : extra.items_) items_.push_back(item + n_base);
+  item_box_ = base.item_box_;
+  item_box_.insert(item_box_.end(), extra.item_box_.begin(), extra.item_box_.end());
+  item_slabs_.clear();
+  const bool slabs = base.item_slabs_.size() == base.items_.size() && extra.item_slabs_.size() == extra.items_.size() &&
+                     items_.size() <= static_cast<std::size_t>(kMaxSlabItems);
+  if (slabs) {
+    item_slabs_ = base.item_slabs_;
+    item_slabs_.insert(item_slabs_.end(), extra.item_slabs_.begin(), extra.item_slabs_.end());
+  }
+}
+
 void TriangleBvh::refit(const std::vector<Box>& boxes) {
   refit_each([&](int item) { return boxes[item]; });
 }

@@ -493,5 +493,58 @@ TEST(TriangleBvhPairs, BoxesTouchingAtBoundsNoFloatHoldsStillOverlap) {
   expect_same_pairs_as_brute_force(a, b, all);
 }
 
+// A joined tree (TriangleBvh::join: a known tree's items plus a few, the checker's
+// first front) finds the pairs and segment crossings of all its items under their new
+// ids, with the slabs of both parts, and keeps finding them after a partial refit.
+TEST(TriangleBvhPairs, JoinedTreesFindEveryPairUnderTheShiftedIds) {
+  std::mt19937 rng(31);
+  const std::vector<Tri> base = sliver_triangles(rng, 12, 0.0), extra = sliver_triangles(rng, 5, 0.04);
+  const std::vector<Tri> other = sliver_triangles(rng, 12, 0.08);
+  std::vector<Tri> all_tris = base;
+  all_tris.insert(all_tris.end(), extra.begin(), extra.end());
+  TriangleBvh joined;
+  joined.join(slabbed_tree(base), slabbed_tree(extra));
+  const TriangleBvh to = slabbed_tree(other);
+  auto expect_pairs = [&](const char* when) {
+    const std::vector<Box> ba = boxes_of(all_tris), bo = boxes_of(other);
+    const std::vector<char> all(all_tris.size(), 1);
+    std::vector<char> nodes;
+    joined.mark_nodes(all, &nodes);
+    Visited two, self;
+    joined.for_each_overlapping_pair(all, nodes, to, [&](int i, int j) { two.add(i, j); });
+    joined.for_each_overlapping_pair(all, nodes, [&](int i, int j) { self.add(std::min(i, j), std::max(i, j)); });
+    EXPECT_EQ(two.repeats + self.repeats, 0) << when;
+    EXPECT_TRUE(between(two.pairs, without_apart(brute_pairs(ba, all, bo), all_tris, other),
+                        without_apart(brute_pairs(grown(ba), all, grown(bo)), all_tris, other)))
+        << when;
+    EXPECT_TRUE(between(self.pairs, without_apart(brute_self_pairs(ba, all), all_tris, all_tris),
+                        without_apart(brute_self_pairs(grown(ba), all), all_tris, all_tris)))
+        << when;
+    // The slabs of both parts are kept: pairs were ruled out.
+    EXPECT_LT(self.pairs.size(), brute_self_pairs(ba, all).size()) << when;
+    for (int s = 0; s < 20; ++s) {
+      std::uniform_real_distribution<double> at(0.0, 12.0);
+      const Vec3 o{at(rng), at(rng), -1.0}, d = normalized(Vec3{at(rng) - 6.0, at(rng) - 6.0, 3.0});
+      expect_segment_visits_as_brute_force(joined, ba, o, d, 5.0);
+    }
+  };
+  expect_pairs("joined");
+  // Triangles of both parts move; only they are refitted.
+  std::vector<char> moved(all_tris.size(), 0);
+  for (std::size_t i = 3; i < all_tris.size(); i += 9) {
+    moved[i] = 1;
+    for (Vec3& p : all_tris[i]) p = p + Vec3{0.4, 0.1, 0.03};
+  }
+  joined.refit_triangles_where(&moved, [&](int i, Vec3* c) { std::copy(all_tris[i].begin(), all_tris[i].end(), c); });
+  expect_pairs("refitted");
+  // An empty part leaves the other's tree.
+  TriangleBvh only_base, only_extra;
+  only_base.join(slabbed_tree(base), TriangleBvh{});
+  only_extra.join(slabbed_tree(std::vector<Tri>{}), slabbed_tree(extra));
+  const Vec3 o{0.5, 0.5, -1.0}, d{0.0, 0.0, 1.0};
+  expect_segment_visits_as_brute_force(only_base, boxes_of(base), o, d, 5.0);
+  expect_segment_visits_as_brute_force(only_extra, boxes_of(extra), o, d, 5.0);
+}
+
 }  // namespace
 }  // namespace blayer

@@ -128,6 +128,10 @@ class FrontChecker {
   bool last_attempt_committed(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) const;
   void check_intersections(const std::vector<Vec3>& next);
   void build_edge_neighbours(const TriSurface& wall, const ColumnLayout& layout);
+  // Whether the first nf_ front triangles are the wall's, corner by corner on bitwise
+  // the same points (the layout's contract, checked rather than assumed: the first
+  // front's tree reuses the wall's for them).
+  bool front_starts_with_wall(const TriSurface& wall) const;
 
   void check_symmetry_side(const std::vector<Vec3>& next);
   std::int64_t cur_id(int c) const { return (*layers_)[c] == 0 ? wall_point_[c] : nv_ + c; }

@@ -111,6 +111,13 @@ class TriangleBvh {
 
   // Builds over boxes[0..n); item ids passed to visitors are indices into boxes.
   void build(const std::vector<Box>& boxes);
+  // This tree becomes one over the items of `base` (ids 0 .. n_base - 1) and those of
+  // `extra` (its ids shifted by n_base): a root above base's tree and extra's, their
+  // boxes and slabs as they are (slabs kept when both hold them and the sum stays
+  // within kMaxSlabItems). For a set that is a known tree's items plus a few: the
+  // checker's first front is the wall's triangles plus the fans' strips, whose wall
+  // part then costs a copy instead of a build (0.41 s on the ONERA M6 571k).
+  void join(const TriangleBvh& base, const TriangleBvh& extra);
   // Builds over n triangles given by their corners (corners_of(i, Vec3 out[3])), with
   // their diagonal slabs as refit_triangles keeps them.
   template <class CornersOf>
