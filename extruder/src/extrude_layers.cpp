@@ -1,5 +1,7 @@
 #include "blayer/extruder/extrude_layers.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -270,8 +272,13 @@ ExtrusionResult extrude_layers(const TriSurface& wall, const ExtrusionParams& pa
   const Stopwatch total;
   check_extrusion_params(params);
   check_wall(wall);
-  const WallTopology wall_topo = build_wall_topology(wall, params.symmetry);
-  auto wall_tree = std::make_unique<WallTree>(wall);  // for every attempt of the run
+  // The topology's tables are built serially: the tree (for every attempt of the run)
+  // is built beside them.
+  WallTopology topology;
+  std::unique_ptr<WallTree> wall_tree;
+  tbb::parallel_invoke([&] { topology = build_wall_topology(wall, params.symmetry); },
+                       [&] { wall_tree = std::make_unique<WallTree>(wall); });
+  const WallTopology& wall_topo = topology;
   if (!(params.fan_angle_deg > 0.0)) {
     FanFailures none;
     const double t_before = total.seconds();
