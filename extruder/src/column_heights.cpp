@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstring>
 
 #include "blayer/extruder/height_smoothing.h"
 #include "parallel.h"
@@ -11,9 +10,6 @@
 namespace blayer {
 
 namespace {
-
-bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof a) == 0; }
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // The memo's ray from wall point w bitwise equal to `ray` (its gap aside), or null.
 const WallGapMemo::Ray* remembered_ray(const WallGapMemo& memo, int w, const WallGapMemo::Ray& ray) {

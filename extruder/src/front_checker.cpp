@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 #include <optional>
 
 #include "blayer/core/assert.h"
@@ -222,7 +221,7 @@ bool FrontChecker::front_starts_with_wall(const TriSurface& wall) const {
   tbb::parallel_for(tbb::blocked_range<int>(0, nf_), [&](const tbb::blocked_range<int>& r) {
     for (int f = r.begin(); f != r.end() && same.load(std::memory_order_relaxed); ++f)
       for (int i = 0; i < 3; ++i)
-        if (std::memcmp(&P[front_[f][i]], &wall.points[wall.triangles[f][i]], sizeof(Vec3)) != 0) same = false;
+        if (!same_bits(P[front_[f][i]], wall.points[wall.triangles[f][i]])) same = false;
   });
   return same;
 }

@@ -1,7 +1,6 @@
 #include "blayer/extruder/step_directions.h"
 
 #include <algorithm>
-#include <cstring>
 #include <optional>
 
 #include "blayer/normals/fan_geometry.h"
@@ -105,9 +104,9 @@ int memo_entry(const WallNormalMemo& memo, const TriSurface& front, const WallTo
   const VertexFan& fan = topo.fans.fans[v];
   const Vec3* stored = memo.points.data() + memo.start[e];
   if (memo.start[e + 1] - memo.start[e] != fan.ring.size() + 1 || (memo.closed[e] != 0) != fan.closed) return -1;
-  if (std::memcmp(&stored[0], &front.points[v], sizeof(Vec3)) != 0) return -1;
+  if (!same_bits(stored[0], front.points[v])) return -1;
   for (std::size_t i = 0; i < fan.ring.size(); ++i)
-    if (std::memcmp(&stored[i + 1], &front.points[fan.ring[i]], sizeof(Vec3)) != 0) return -1;
+    if (!same_bits(stored[i + 1], front.points[fan.ring[i]])) return -1;
   return e;
 }
 
@@ -152,7 +151,7 @@ WallNormalMemo memo_layout(const TriSurface& front, const WallTopology& topo, co
   std::vector<int> owner(n_wall, -1);
   for (int v = 0; v < nv; ++v) {
     const int w = topo.wall_point[v];
-    if (!which[v] || w < 0 || !old.stores(topo.fans.fans[v].ring.size())) continue;
+    if (!which[v] || w < 0 || !old.stores(topo.fans.fans[v])) continue;
     owner[w] = owner[w] == -1 ? v : -2;
   }
   WallNormalMemo m;
@@ -270,7 +269,7 @@ void WallNormalMemo::drop_cheap() {
   WallNormalMemo kept;
   kept.start.push_back(0);
   for (std::size_t e = 0; e < wall_point.size(); ++e) {
-    if (start[e + 1] - start[e] < kMemoMinValence + 1) continue;
+    if (start[e + 1] - start[e] < kMemoMinValence + 1) continue;  // the point and its ring
     kept.wall_point.push_back(wall_point[e]);
     kept.points.insert(kept.points.end(), points.begin() + start[e], points.begin() + start[e + 1]);
     kept.start.push_back(kept.points.size());

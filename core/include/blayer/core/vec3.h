@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 
 namespace blayer {
 
@@ -49,5 +50,10 @@ inline double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(no
 inline bool is_finite(const Vec3& a) {
   return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
 }
+
+// Bitwise equality, for memos of pure functions of the coordinates (-0.0 and 0.0 differ,
+// a NaN equals itself): == would call distinct inputs the same.
+inline bool same_bits(const Vec3& a, const Vec3& b) { return std::memcmp(a.data(), b.data(), sizeof a) == 0; }
+inline bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 }  // namespace blayer

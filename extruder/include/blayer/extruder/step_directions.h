@@ -57,13 +57,15 @@ struct WallNormalMemo {
   std::vector<VertexNormal> normal;    // per entry
   long reused = 0;  // normals taken from the memo, over the run
   long solved = 0;  // fan normals solved while a memo was given
-  bool keep_cheap = true;  // whether fans below kMemoMinValence triangles are stored
+  // Whether fans of fewer than kMemoMinValence ring points (triangles, on a closed fan)
+  // are stored.
+  bool keep_cheap = true;
   // The entry of wall point w, or -1.
   int entry_of(int w) const;
   // Frees the entries of fans below kMemoMinValence triangles and stores no more of
   // them.
   void drop_cheap();
-  bool stores(std::size_t n_triangles) const { return keep_cheap || n_triangles >= kMemoMinValence; }
+  bool stores(const VertexFan& fan) const { return keep_cheap || fan.ring.size() >= kMemoMinValence; }
 };
 
 // warm (optional): most-normal warm starts carried from front to front (most_normal.h),
