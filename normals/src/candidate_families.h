@@ -162,14 +162,24 @@ void triple_candidates(const FanSites& s, const SiteSubset& sub, const Screen& s
     }
 }
 
+// Where a caller's candidates must lie, for the constraint circles' pass:
+//   great_circle(h)       whether the great circle {n.h = 0} can hold one;
+//   window(h, c0)         the arc of the circle {n.h = c0} (CircleWindow) that can.
+// AnyRegion is the whole sphere.
+struct AnyRegion {
+  bool great_circle(const Vec3&) const { return true; }
+  CircleWindow window(const Vec3&, double) const { return {}; }
+};
+
 // Candidates on the constraint circles {n.f_i = v_min} of the faces `faces` (fan arc
 // indices): with each other, with every bisector of the subset, and the single-site
 // extrema along each circle (towards and away from each site's axis). The intersections
-// with a great circle {n.h = 0} (of two faces' circles, or a bisector) are built only
-// where near(h) says that circle can reach the caller's region.
-template <class Emit, class Near>
+// with a great circle (of two faces' circles, or a bisector) are built only where
+// `region` says that circle can reach it, those with a point-arc cone only in its window
+// of the constraint circle.
+template <class Emit, class Region>
 void constraint_candidates(const FanGeometry& g, const FanSites& s, const SiteSubset& sub, const int* faces,
-                           int n_faces, double v_min, Emit&& emit, Near&& near) {
+                           int n_faces, double v_min, Emit&& emit, const Region& region) {
   const int np = sub.n_points, na = sub.n_arcs;
   auto pw = [&](int a) -> const Vec3& { return s.points[sub.points[a]].w; };
   auto ag = [&](int a) -> const Vec3& { return s.arcs[sub.arcs[a]].g; };
@@ -179,20 +189,21 @@ void constraint_candidates(const FanGeometry& g, const FanSites& s, const SiteSu
     // Two faces' circles meet on the great circle {n.(f_i - f_j) = 0}.
     for (int jj = ii + 1; jj < n_faces; ++jj) {
       const Vec3& fj = g.face_normals[faces[jj]];
-      if (near(fi - fj)) plane_plane_sphere(fi, c0, fj, c0, emit);
+      if (region.great_circle(fi - fj)) plane_plane_sphere(fi, c0, fj, c0, emit);
     }
     for (int a = 0; a < np; ++a)
       for (int b = a + 1; b < np; ++b) {
         const Vec3 h = pw(a) - pw(b);
-        if (near(h)) plane_plane_sphere(fi, c0, h, 0.0, emit);
+        if (region.great_circle(h)) plane_plane_sphere(fi, c0, h, 0.0, emit);
       }
     for (int a = 0; a < na; ++a)
       for (int b = a + 1; b < na; ++b) {
         const Vec3 h = ag(a) - ag(b);
-        if (near(h)) plane_plane_sphere(fi, c0, h, 0.0, emit);
+        if (region.great_circle(h)) plane_plane_sphere(fi, c0, h, 0.0, emit);
       }
+    const CircleWindow window = region.window(fi, c0);
     for (int a = 0; a < np; ++a)
-      for (int b = 0; b < na; ++b) circle_cone(fi, c0, pw(a), ag(b), emit);
+      for (int b = 0; b < na; ++b) circle_cone(fi, c0, pw(a), ag(b), emit, window);
     auto along = [&](const Vec3& axis) {
       const Vec3 t = normalized(axis - dot(axis, fi) * fi);
       if (norm2(t) == 0.0) return;
@@ -207,7 +218,7 @@ void constraint_candidates(const FanGeometry& g, const FanSites& s, const SiteSu
 template <class Emit>
 void constraint_candidates(const FanGeometry& g, const FanSites& s, const SiteSubset& sub, const int* faces,
                            int n_faces, double v_min, Emit&& emit) {
-  constraint_candidates(g, s, sub, faces, n_faces, v_min, emit, [](const Vec3&) { return true; });
+  constraint_candidates(g, s, sub, faces, n_faces, v_min, emit, AnyRegion{});
 }
 
 // A circle {n.h = c0} (h unit) along which two concentric sites keep D constant.

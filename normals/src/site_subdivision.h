@@ -51,6 +51,7 @@
 #include "candidate_pool.h"
 #include "fan_sites.h"
 #include "recycled_vector.h"
+#include "sphere_solvers.h"
 
 namespace blayer {
 namespace detail {
@@ -84,6 +85,28 @@ inline bool great_circle_meets_cap(const Vec3& c, double cos_cap, const Vec3& h)
   if (!(cos_cap > 0.0)) return true;
   const double sin_reach = std::sqrt(std::max(0.0, 1.0 - cos_cap * cos_cap) + 4e-15) + 1e-12;
   return std::fabs(dot(c, h)) <= sin_reach * norm(h);
+}
+
+// The arc of the circle {n.h = c0, |n| = 1} (h unit, its CircleWindow frame) that can
+// hold a direction a leaf with centre c admits (n.c >= cos_cap |n|, as
+// SiteSubdivision::offer tests): n(t).c = c0 (h.c) + s R cos(t - t0) with
+// R cos t0 = e1.c, R sin t0 = e2.c. The cosine is lowered by 1e-12 for the rounding of
+// the built points (about 1e-15) and of offer's test, the half width widened by 1e-9.
+// An empty window (half width -1) where the circle misses the cap; the whole circle for
+// caps of a hemisphere or more, or where the circle is a point or centred on c.
+inline CircleWindow circle_window_in_cap(const Vec3& c, double cos_cap, const Vec3& h, double c0) {
+  CircleWindow whole;
+  if (!(cos_cap > 0.0)) return whole;
+  Vec3 e1, e2;
+  orthonormal_complement(h, &e1, &e2);
+  const double s = std::sqrt(std::max(0.0, 1.0 - c0 * c0));
+  const double a = dot(c, e1), b = dot(c, e2);
+  const double sr = s * std::hypot(a, b);
+  if (!(sr > 1e-6)) return whole;
+  const double kappa = (cos_cap - 1e-12 - c0 * dot(c, h)) / sr;
+  if (kappa <= -1.0) return whole;
+  if (kappa > 1.0) return {0.0, -1.0};
+  return {std::atan2(b, a), std::acos(kappa) + 1e-9};
 }
 
 // The foot-inside lune of fan arc i, as two half-spaces: n's foot on the arc's great

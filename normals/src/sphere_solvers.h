@@ -117,9 +117,42 @@ inline double cone_form(const Vec3& w, const Vec3& f, const Vec3& x, const Vec3&
   return dot(w, x) * dot(w, y) + dot(f, x) * dot(f, y) - dot(x, y);
 }
 
+// An arc of the circle {n.h = c0, |n| = 1} (h unit), n(t) = c0 h + s (cos t e1 + sin t e2)
+// with e1, e2 from orthonormal_complement(h) and s = sqrt(1 - c0^2): the t within
+// half_width of centre. The default is the whole circle.
+struct CircleWindow {
+  double centre = 0.0;
+  double half_width = 4.0;
+  bool whole() const { return half_width >= M_PI; }
+};
+
+// Residual |F| of a point of circle_cone's quartic, F = n^T(ww^T + ff^T - I)n at the
+// root's direction: the quartic's value there is (1 + x^2)^2 F (x = tan(t / 2)), left by
+// bisection to adjacent doubles or by a closed-form root at its rounding, below 1e-12
+// for coefficients of unit-vector products (|K| <= 6); 1e-9 covers it by three orders,
+// and the rounding of the window test's own F and slopes.
+constexpr double kConeRootResidual = 1e-9;
+
+// Whether the quartic of circle_cone can have a root in the window, from its terms
+// F(t) = K0 + K1 cos t + K2 sin t + K3 cos 2t + K4 sin 2t: on |t - centre| <= w,
+// |F| >= |F(centre)| - |F'(centre)| w - M w^2 / 2, M bounding |F''|.
+inline bool cone_terms_reach_window(const double k[5], const CircleWindow& window) {
+  if (window.whole()) return true;
+  if (window.half_width < 0.0) return false;
+  const double ct = std::cos(window.centre), st = std::sin(window.centre);
+  const double c2 = ct * ct - st * st, s2 = 2.0 * st * ct;
+  const double value = k[0] + k[1] * ct + k[2] * st + k[3] * c2 + k[4] * s2;
+  const double slope = -k[1] * st + k[2] * ct - 2.0 * k[3] * s2 + 2.0 * k[4] * c2;
+  const double curvature = std::hypot(k[1], k[2]) + 4.0 * std::hypot(k[3], k[4]);
+  const double w = window.half_width;
+  return std::fabs(value) - std::fabs(slope) * w - 0.5 * curvature * w * w <= kConeRootResidual;
+}
+
 // Points of the circle {n.h = c0, |n| = 1} (h unit) on the cone n^T(ww^T + ff^T - I)n = 0.
+// Where the circle is not a great one, only those in `window` are sought; the point at
+// t = pi is offered in any case.
 template <class F>
-void circle_cone(const Vec3& h, double c0, const Vec3& w, const Vec3& f, F&& emit) {
+void circle_cone(const Vec3& h, double c0, const Vec3& w, const Vec3& f, F&& emit, const CircleWindow& window = {}) {
   Vec3 e1, e2;
   orthonormal_complement(h, &e1, &e2);
   const double s2 = 1.0 - c0 * c0;
@@ -148,10 +181,11 @@ void circle_cone(const Vec3& h, double c0, const Vec3& w, const Vec3& f, F&& emi
   const double k2 = 2.0 * c0 * s * cone_form(w, f, h, e2);
   const double k3 = s2 * 0.5 * (a - c);
   const double k4 = s2 * b;
+  const double terms[5] = {k0, k1, k2, k3, k4};
   const double poly[5] = {k0 + k1 + k3, 2.0 * k2 + 4.0 * k4, 2.0 * k0 - 6.0 * k3, 2.0 * k2 - 4.0 * k4,
                           k0 - k1 + k3};
   double roots[4];
-  const int nr = poly_real_roots(poly, 4, roots);
+  const int nr = cone_terms_reach_window(terms, window) ? poly_real_roots(poly, 4, roots) : 0;
   for (int i = 0; i < nr; ++i) {
     const double t = 2.0 * std::atan(roots[i]);
     emit(c0 * h + s * (std::cos(t) * e1 + std::sin(t) * e2));

@@ -368,6 +368,53 @@ TEST(SiteSubdivision, GreatCircleScreenKeepsEveryCircleThroughTheLeaf) {
   EXPECT_GT(dropped, 5000);
 }
 
+// The constraint pass solves a point-arc cone's quartic on a constraint circle in a leaf
+// only when circle_window_in_cap's arc of that circle can hold a root
+// (cone_terms_reach_window). For random leaves of radii down to 1e-9, constraint circles
+// through or near them and cones through a point near them (or random), every point
+// circle_cone builds on the whole circle that the leaf admits is built, bit for bit,
+// within the window too; and many quartics are skipped.
+TEST(SiteSubdivision, ConeWindowKeepsEveryConePointTheLeafAdmits) {
+  std::mt19937 rng(43);
+  std::normal_distribution<double> nd;
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  auto random_unit = [&]() { return normalized(Vec3{nd(rng), nd(rng), nd(rng)}); };
+  int admitted_points = 0, skipped = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const Vec3 c = random_unit();
+    const double rho = std::pow(10.0, -9.0 + 9.2 * u01(rng));
+    const double cos_cap = std::cos(rho + 1e-12) - 1e-15;  // as SiteSubdivision::record_leaf sets it
+    const double admitted = std::acos(std::min(1.0, cos_cap));
+    // A point around the cap's edge, on the constraint circle {n.f = c0}.
+    const Vec3 p = normalized(std::cos(admitted * 1.5 * u01(rng)) * c +
+                              std::sin(admitted * 1.5 * u01(rng)) * normalized(cross(c, random_unit())));
+    const Vec3 f = random_unit();
+    const double c0 = dot(f, p);
+    // A cone through p (w, g with (p.w)^2 + (p.g)^2 = 1), or a random one.
+    const Vec3 w = random_unit();
+    Vec3 g = random_unit();
+    if (t % 4 != 0) {
+      const double cos_a = std::sqrt(std::max(0.0, 1.0 - dot(p, w) * dot(p, w)));
+      const Vec3 q = normalized(cross(p, random_unit()));
+      g = normalized(cos_a * p + std::sqrt(std::max(0.0, 1.0 - cos_a * cos_a)) * q);
+    }
+    std::vector<Vec3> whole, windowed;
+    detail::circle_cone(f, c0, w, g, [&](const Vec3& n) { whole.push_back(n); });
+    const detail::CircleWindow window = detail::circle_window_in_cap(c, cos_cap, f, c0);
+    detail::circle_cone(f, c0, w, g, [&](const Vec3& n) { windowed.push_back(n); }, window);
+    if (windowed.size() < whole.size()) ++skipped;
+    for (const Vec3& n : whole) {
+      if (!(dot(n, c) >= cos_cap * norm(n))) continue;
+      ++admitted_points;
+      bool built = false;
+      for (const Vec3& m : windowed) built |= m == n;
+      EXPECT_TRUE(built) << "leaf " << t << " radius " << rho;
+    }
+  }
+  EXPECT_GT(admitted_points, 5000);
+  EXPECT_GT(skipped, 5000);
+}
+
 // The generator screen keeps an arc only on its fluid side: a direction at its pole
 // passes, its antipode does not, nor a pair of arcs whose poles are antipodal.
 TEST(ArcReachScreen, KeepsArcGeneratorsOnTheirFluidSideOnly) {
