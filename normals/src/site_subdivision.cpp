@@ -599,16 +599,28 @@ void SiteSubdivision::drop_circles_below_another(const Leaf& leaf, std::vector<i
 namespace {
 
 // The constraint pass's region in a leaf: the directions offer() admits,
-// n.c >= cos_cap |n|. Intersections on great circles that pass outside it would not be
-// offered: they are not built (a valence-40 sliver fan's 16,000 face pairs in 51
-// leaves). Nor are the quartics of point-arc cones solved where their roots cannot
-// fall in the leaf's arc of the constraint circle (on a valence-40 sliver fan 1,404
-// quartics took 60 % of a 2.5 ms solve, for 15 candidates in their leaves).
+// n.c >= cos_cap |n|, where the leaf's faces whose constraint circles cross it keep them
+// feasible (the other faces are feasible on all of the leaf). Intersections on great
+// circles that pass outside the leaf would not be offered: they are not built (a
+// valence-40 sliver fan's 16,000 face pairs in 51 leaves). Nor are the quartics of
+// point-arc cones solved where their roots cannot fall in the window of the constraint
+// circle that is in the leaf and feasible (on a valence-40 sliver fan 1,404 quartics
+// took 60 % of a 2.5 ms solve, for 15 candidates in their leaves).
 struct LeafRegion {
+  const FanGeometry& g;
   Vec3 c;
   double cos_cap;
+  const std::vector<int>& crossing;
+  double v_min;
   bool great_circle(const Vec3& h) const { return great_circle_meets_cap(c, cos_cap, h); }
-  CircleWindow window(const Vec3& h, double c0) const { return circle_window_in_cap(c, cos_cap, h, c0); }
+  CircleWindow window(const Vec3& h, double c0) const {
+    CircleWindow w = circle_window_in_cap(c, cos_cap, h, c0);
+    for (int j : crossing) {
+      if (w.half_width < 0.0) break;
+      w = intersect_windows(w, circle_window_feasible(g.face_normals[j], v_min, h, c0));
+    }
+    return w;
+  }
 };
 
 }  // namespace
@@ -628,7 +640,7 @@ void SiteSubdivision::constraint_circles() {
     if (crossing.empty()) continue;
     auto emit = [&](const Vec3& n) { offer(leaf, n); };
     constraint_candidates(g_, s_, subset(leaf), crossing.data(), static_cast<int>(crossing.size()), v_min, emit,
-                          LeafRegion{leaf.c, leaf.cos_cap});
+                          LeafRegion{g_, leaf.c, leaf.cos_cap, crossing, v_min});
   }
 }
 

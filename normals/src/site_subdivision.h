@@ -44,6 +44,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -87,26 +88,58 @@ inline bool great_circle_meets_cap(const Vec3& c, double cos_cap, const Vec3& h)
   return std::fabs(dot(c, h)) <= sin_reach * norm(h);
 }
 
-// The arc of the circle {n.h = c0, |n| = 1} (h unit, its CircleWindow frame) that can
-// hold a direction a leaf with centre c admits (n.c >= cos_cap |n|, as
-// SiteSubdivision::offer tests): n(t).c = c0 (h.c) + s R cos(t - t0) with
-// R cos t0 = e1.c, R sin t0 = e2.c. The cosine is lowered by 1e-12 for the rounding of
-// the built points (about 1e-15) and of offer's test, the half width widened by 1e-9.
-// An empty window (half width -1) where the circle misses the cap; the whole circle for
-// caps of a hemisphere or more, or where the circle is a point or centred on c.
-inline CircleWindow circle_window_in_cap(const Vec3& c, double cos_cap, const Vec3& h, double c0) {
-  CircleWindow whole;
-  if (!(cos_cap > 0.0)) return whole;
+// The arc of the circle {n.h = c0, |n| = 1} (h unit, its CircleWindow frame) where
+// n.x >= level (x unit): n(t).x = c0 (h.x) + s R cos(t - t0) with R cos t0 = e1.x,
+// R sin t0 = e2.x, widened by 1e-9 in half width for the rounding of the arccosine. The
+// whole circle where the circle is a point or nearly centred on x (s R <= 1e-6), an
+// empty window (half width -1) where no point of it reaches the level.
+inline CircleWindow circle_arc_above(const Vec3& h, double c0, const Vec3& x, double level) {
   Vec3 e1, e2;
   orthonormal_complement(h, &e1, &e2);
   const double s = std::sqrt(std::max(0.0, 1.0 - c0 * c0));
-  const double a = dot(c, e1), b = dot(c, e2);
+  const double a = dot(x, e1), b = dot(x, e2);
   const double sr = s * std::hypot(a, b);
-  if (!(sr > 1e-6)) return whole;
-  const double kappa = (cos_cap - 1e-12 - c0 * dot(c, h)) / sr;
-  if (kappa <= -1.0) return whole;
+  if (!(sr > 1e-6)) return {};
+  const double kappa = (level - c0 * dot(x, h)) / sr;
+  if (kappa <= -1.0) return {};
   if (kappa > 1.0) return {0.0, -1.0};
   return {std::atan2(b, a), std::acos(kappa) + 1e-9};
+}
+
+// The arc of the circle {n.h = c0} that can hold a direction a leaf with centre c
+// admits (n.c >= cos_cap |n|, as SiteSubdivision::offer tests): the level is lowered by
+// 1e-12 for the rounding of the built points (about 1e-15) and of offer's test. The
+// whole circle for caps of a hemisphere or more.
+inline CircleWindow circle_window_in_cap(const Vec3& c, double cos_cap, const Vec3& h, double c0) {
+  if (!(cos_cap > 0.0)) return {};
+  return circle_arc_above(h, c0, c, cos_cap - 1e-12);
+}
+
+// The part of the circle {n.h = c0} where face normal f keeps the visibility that
+// CandidatePool::consider requires of a constrained candidate, n.f >= v_min -
+// kConstraintSlack, lowered by 1e-13 for the rounding of the built points and of the
+// pool's dot products.
+inline CircleWindow circle_window_feasible(const Vec3& f, double v_min, const Vec3& h, double c0) {
+  return circle_arc_above(h, c0, f, v_min - kConstraintSlack - 1e-13);
+}
+
+// The smallest window holding the common part of two windows of one circle (their
+// intersection, or the hull of its two pieces where it has two).
+inline CircleWindow intersect_windows(const CircleWindow& a, const CircleWindow& b) {
+  if (a.half_width < 0.0 || b.whole()) return a;
+  if (b.half_width < 0.0 || a.whole()) return b;
+  const double delta = std::remainder(b.centre - a.centre, 2.0 * M_PI);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int turn = -1; turn <= 1; ++turn) {
+    const double piece_lo = std::max(-a.half_width, delta + 2.0 * M_PI * turn - b.half_width);
+    const double piece_hi = std::min(a.half_width, delta + 2.0 * M_PI * turn + b.half_width);
+    if (piece_lo <= piece_hi) {
+      lo = std::min(lo, piece_lo);
+      hi = std::max(hi, piece_hi);
+    }
+  }
+  if (!(lo <= hi)) return {0.0, -1.0};
+  return {a.centre + 0.5 * (lo + hi), 0.5 * (hi - lo)};
 }
 
 // The foot-inside lune of fan arc i, as two half-spaces: n's foot on the arc's great

@@ -7,6 +7,7 @@
 // and the constraint pass's great-circle screen keeps every circle through a leaf.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -369,11 +370,13 @@ TEST(SiteSubdivision, GreatCircleScreenKeepsEveryCircleThroughTheLeaf) {
 }
 
 // The constraint pass solves a point-arc cone's quartic on a constraint circle in a leaf
-// only when circle_window_in_cap's arc of that circle can hold a root
+// only when the window of that circle in the leaf (circle_window_in_cap) where another
+// face stays feasible (circle_window_feasible) can hold a root
 // (cone_terms_reach_window). For random leaves of radii down to 1e-9, constraint circles
-// through or near them and cones through a point near them (or random), every point
-// circle_cone builds on the whole circle that the leaf admits is built, bit for bit,
-// within the window too; and many quartics are skipped.
+// through or near them, a second face whose circle passes near them, and cones through a
+// point near them (or random), every point circle_cone builds on the whole circle that
+// the leaf admits and the second face leaves feasible (as CandidatePool::consider tests)
+// is built, bit for bit, within the window too; and many quartics are skipped.
 TEST(SiteSubdivision, ConeWindowKeepsEveryConePointTheLeafAdmits) {
   std::mt19937 rng(43);
   std::normal_distribution<double> nd;
@@ -390,6 +393,9 @@ TEST(SiteSubdivision, ConeWindowKeepsEveryConePointTheLeafAdmits) {
                               std::sin(admitted * 1.5 * u01(rng)) * normalized(cross(c, random_unit())));
     const Vec3 f = random_unit();
     const double c0 = dot(f, p);
+    // The second face: its circle {n.f2 = c0} passes within about the leaf's radius of p.
+    const double v2 = std::clamp(c0 + admitted * (2.0 * u01(rng) - 1.0), -1.0, 1.0);
+    const Vec3 f2 = normalized(v2 * p + std::sqrt(1.0 - v2 * v2) * normalized(cross(p, random_unit())));
     // A cone through p (w, g with (p.w)^2 + (p.g)^2 = 1), or a random one.
     const Vec3 w = random_unit();
     Vec3 g = random_unit();
@@ -400,11 +406,13 @@ TEST(SiteSubdivision, ConeWindowKeepsEveryConePointTheLeafAdmits) {
     }
     std::vector<Vec3> whole, windowed;
     detail::circle_cone(f, c0, w, g, [&](const Vec3& n) { whole.push_back(n); });
-    const detail::CircleWindow window = detail::circle_window_in_cap(c, cos_cap, f, c0);
+    const detail::CircleWindow window = detail::intersect_windows(
+        detail::circle_window_in_cap(c, cos_cap, f, c0), detail::circle_window_feasible(f2, c0, f, c0));
     detail::circle_cone(f, c0, w, g, [&](const Vec3& n) { windowed.push_back(n); }, window);
     if (windowed.size() < whole.size()) ++skipped;
     for (const Vec3& n : whole) {
       if (!(dot(n, c) >= cos_cap * norm(n))) continue;
+      if (!(dot(n / norm(n), f2) >= c0 - detail::kConstraintSlack)) continue;
       ++admitted_points;
       bool built = false;
       for (const Vec3& m : windowed) built |= m == n;
@@ -413,6 +421,39 @@ TEST(SiteSubdivision, ConeWindowKeepsEveryConePointTheLeafAdmits) {
   }
   EXPECT_GT(admitted_points, 5000);
   EXPECT_GT(skipped, 5000);
+}
+
+// intersect_windows keeps every angle that lies in both windows (a sampled brute force,
+// across the wrap at pi), and its window is no wider than the first one.
+TEST(SiteSubdivision, IntersectedWindowsHoldEveryCommonAngle) {
+  std::mt19937 rng(47);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  auto random_window = [&]() {
+    const double kind = u01(rng);
+    if (kind < 0.05) return detail::CircleWindow{};             // whole
+    if (kind < 0.1) return detail::CircleWindow{0.0, -1.0};     // empty
+    return detail::CircleWindow{2.0 * M_PI * (u01(rng) - 0.5) * 1.2, M_PI * u01(rng) * u01(rng)};
+  };
+  auto holds = [](const detail::CircleWindow& w, double t) {
+    return w.whole() || (w.half_width >= 0.0 && std::fabs(std::remainder(t - w.centre, 2.0 * M_PI)) <= w.half_width);
+  };
+  int common = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    const detail::CircleWindow a = random_window(), b = random_window();
+    const detail::CircleWindow both = detail::intersect_windows(a, b);
+    if (!a.whole()) {
+      EXPECT_LE(both.half_width, a.half_width + 1e-15) << trial;
+    }
+    for (int k = 0; k < 720; ++k) {
+      const double t = -M_PI + 2.0 * M_PI * (k + 0.5) / 720.0;
+      if (!(holds(a, t) && holds(b, t))) continue;
+      ++common;
+      // 1e-12 of slack for the rounding of the centre's shift.
+      const bool kept = holds(both, t) || holds(both, t + 1e-12) || holds(both, t - 1e-12);
+      EXPECT_TRUE(kept) << "trial " << trial << " angle " << t;
+    }
+  }
+  EXPECT_GT(common, 100000);
 }
 
 // The generator screen keeps an arc only on its fluid side: a direction at its pole
