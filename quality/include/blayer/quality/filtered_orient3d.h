@@ -73,24 +73,38 @@ inline int orient3d_filtered(const Vec3& a, const Vec3& b, const Vec3& c, const 
   return sign != 0 ? sign : orient3d_sign(a, b, c, d);
 }
 
+// The plane through a, b, c with its minors computed once, for the signs of
+// det[b - a, c - a, q - a] at many points q (orient3d_filter and orient3d_sign's sign).
+class PlaneSides {
+ public:
+  PlaneSides(const Vec3& a, const Vec3& b, const Vec3& c) : a_(a) {
+    const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
+    const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
+    const double bycz = by * cz, bzcy = bz * cy, bzcx = bz * cx, bxcz = bx * cz, bxcy = bx * cy, bycx = by * cx;
+    m_ = {bycz - bzcy, bzcx - bxcz, bxcy - bycx};
+    perm_ = {std::fabs(bycz) + std::fabs(bzcy), std::fabs(bzcx) + std::fabs(bxcz), std::fabs(bxcy) + std::fabs(bycx)};
+  }
+  // The sign where the filter certifies it, else 0.
+  int filter(const Vec3& q) const {
+    const double qx = q[0] - a_[0], qy = q[1] - a_[1], qz = q[2] - a_[2];
+    const double ax = std::fabs(qx), ay = std::fabs(qy), az = std::fabs(qz);
+    return certain_sign(qx * m_[0] + qy * m_[1] + qz * m_[2], ax * perm_[0] + ay * perm_[1] + az * perm_[2],
+                        std::max(ax, std::max(ay, az)));
+  }
+
+ private:
+  Vec3 a_, m_, perm_;
+};
+
 // out[i] = orient3d_filter(a, b, c, *p[i]) for i < n (0: the filter cannot decide),
 // with the plane's minors shared; true when every sign was decided. The points are
 // passed by address: the hot callers name them in a shared point array.
 inline bool orient3d_sides_filter(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3* const* p, int n,
                                   int* out) {
-  const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
-  const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
-  const double bycz = by * cz, bzcy = bz * cy, bzcx = bz * cx, bxcz = bx * cz, bxcy = bx * cy, bycx = by * cx;
-  const double mx = bycz - bzcy, my = bzcx - bxcz, mz = bxcy - bycx;
-  const double px_perm = std::fabs(bycz) + std::fabs(bzcy), py_perm = std::fabs(bzcx) + std::fabs(bxcz),
-               pz_perm = std::fabs(bxcy) + std::fabs(bycx);
+  const PlaneSides plane(a, b, c);
   bool all = true;
   for (int i = 0; i < n; ++i) {
-    const Vec3& q = *p[i];
-    const double qx = q[0] - a[0], qy = q[1] - a[1], qz = q[2] - a[2];
-    const double ax = std::fabs(qx), ay = std::fabs(qy), az = std::fabs(qz);
-    out[i] = certain_sign(qx * mx + qy * my + qz * mz, ax * px_perm + ay * py_perm + az * pz_perm,
-                          std::max(ax, std::max(ay, az)));
+    out[i] = plane.filter(*p[i]);
     all = all && out[i] != 0;
   }
   return all;
