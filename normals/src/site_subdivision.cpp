@@ -106,6 +106,7 @@ SiteSubdivision::SiteSubdivision(const FanSites& sites, CandidatePool* pool)
     merged_lune2_[m] = normalized(cross(s_.arcs[m].v, s_.arcs[m].g));
   }
   arc_cos_.resize(k_);
+  face_cos_.resize(k_);
   n_points_ = static_cast<int>(s_.points.size());
   vertex_stamp_.assign(g_.dirs.size(), 0);
   arc_stamp_.assign(na, 0);
@@ -204,13 +205,29 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
     vertex = at_end ? next_vertex(best) : best;
     d = angle_between(c, g_.dirs[vertex]);
   }
-  double v = 2.0;
-  for (int t = faces_begin; t < faces_end; ++t) v = std::min(v, dot(c, g_.face_normals[arena_[t]]));
+  // V at c over the kept faces, and the two lowest of them (for pair_infeasible).
+  double v = 2.0, second = 2.0;
+  int lowest[2] = {-1, -1};
+  for (int t = faces_begin; t < faces_end; ++t) {
+    const int i = arena_[t];
+    const double cf = dot(c, g_.face_normals[i]);
+    face_cos_[i] = cf;
+    if (cf < v) {
+      second = v, lowest[1] = lowest[0];
+      v = cf, lowest[0] = i;
+    } else if (cf < second) {
+      second = cf, lowest[1] = i;
+    }
+  }
 
   const double d_high = d + rho + kBoundMargin;
   if (d_high < pool_.threshold()) return;
-  const bool maybe_feasible =
-      !invisible && (!pool_.constrained() || v + rho + kBoundMargin >= pool_.v_min() - kConstraintSlack);
+  // Feasible somewhere in the cell: face by face (V is 1-Lipschitz), and unless a pair of
+  // faces rules it out (tried only where the centre fails V_min).
+  bool maybe_feasible = !invisible;
+  if (maybe_feasible && pool_.constrained())
+    maybe_feasible = v + rho + kBoundMargin >= pool_.v_min() - kConstraintSlack &&
+                     !(v < pool_.v_min() && pair_infeasible(c, rho, lowest, faces_begin, faces_end));
   if (!maybe_feasible) {
     // A cell invisible below V_min all over holds no candidate of the constraint circles
     // (docs/normals.md): when only those are sought, it is dropped whatever its D.
@@ -276,6 +293,24 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
       refine(kids[q], own_arcs, own_faces, own_faces, own_end, depth + 1, n_sites, stable, !maybe_feasible);
   }
   arena_.resize(own_arcs);
+}
+
+bool SiteSubdivision::pair_infeasible(const Vec3& c, double rho, const int lowest[2], int faces_begin,
+                                      int faces_end) const {
+  const double level = 2.0 * (pool_.v_min() - kConstraintSlack);
+  for (int q = 0; q < 2 && lowest[q] >= 0; ++q) {
+    const int a = lowest[q];
+    const Vec3& fa = g_.face_normals[a];
+    // On the cap n.(f_a + f_b) <= c.(f_a + f_b) + rho |f_a + f_b|, at least c.f_a + c.f_b.
+    const double reach = level - face_cos_[a];
+    for (int t = faces_begin; t < faces_end; ++t) {
+      const int b = arena_[t];
+      if (b == a || !(face_cos_[b] < reach)) continue;
+      const Vec3 sum = fa + g_.face_normals[b];
+      if (dot(c, sum) + (rho + 1e-15) * norm(sum) + kBoundMargin < level) return true;
+    }
+  }
+  return false;
 }
 
 void SiteSubdivision::probe_centre(const Vec3& c) {

@@ -181,8 +181,9 @@ class SiteSubdivision {
   // pool in its constrained pass).
   void constraint_circles();
 
-  // Set-aside cells. A cell invisible below V_min all over holds no candidate of the
-  // constrained problem: its candidates can only raise the unconstrained optimum, which
+  // Set-aside cells. A cell invisible below V_min all over (face by face, or by a pair
+  // of nearly opposite faces: pair_infeasible) holds no candidate of the constrained
+  // problem: its candidates can only raise the unconstrained optimum, which
   // decides no answer, only whether the constraint limits it (the status, and whether
   // the constraint circles are searched at all). On sliver fans that optimum sits on a
   // near-plateau of near-antipodal link vertices, and pinning its value took thousands
@@ -256,6 +257,14 @@ class SiteSubdivision {
   // The floor is a point's exact D, so the optimum reaches it, and it never enters the
   // maximisers (CandidatePool::raise_floor).
   void probe_centre(const Vec3& c);
+  // Whether a pair of the kept faces arena_[faces_begin, faces_end) puts the whole cap
+  // B(c, rho) below V_min: feasible points have n.f_a + n.f_b >= 2 (V_min - slack), so a
+  // pair whose sum stays below that on the cap proves it. The bound V(c) + rho, face by
+  // face, cannot: it keeps every cell along the constraint of two nearly opposite faces
+  // (a knife-edge fan: on valence-30 and -40 sliver fans 3,000 to 4,800 cells, all but a
+  // few hundred of them refined there). Any pair gives a valid proof; as a matter of cost
+  // the two lowest faces at c (lowest, from face_cos_) are paired with the others.
+  bool pair_infeasible(const Vec3& c, double rho, const int lowest[2], int faces_begin, int faces_end) const;
   void set_aside(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
                  int parent_sites, int stable_levels, double d_high);
   // Fills leaf_points_, leaf_arcs_ and near_ for the cell B(c, rho) from its kept arcs
@@ -291,6 +300,7 @@ class SiteSubdivision {
   RecycledVector<Vec3> lune1_, lune2_, merged_lune1_, merged_lune2_;
   RecycledVector<int> arena_;  // active fan arcs and faces of the cells on the current path
   RecycledVector<double> arc_cos_;  // scratch: cosine of each fan arc's distance at the cell centre
+  RecycledVector<double> face_cos_;  // scratch: c.f_i of each kept face at the cell centre
   RecycledVector<int> arc_stamp_, vertex_stamp_;
   // Scratch of the cell being classified: (c.u_j, j) of the link vertices within reach.
   RecycledVector<std::pair<double, int>> near_;
