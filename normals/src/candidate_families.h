@@ -201,9 +201,11 @@ void constraint_candidates(const FanGeometry& g, const FanSites& s, const SiteSu
         const Vec3 h = ag(a) - ag(b);
         if (region.great_circle(h)) plane_plane_sphere(fi, c0, h, 0.0, emit);
       }
-    const CircleWindow window = region.window(fi, c0);
-    for (int a = 0; a < np; ++a)
-      for (int b = 0; b < na; ++b) circle_cone(fi, c0, pw(a), ag(b), emit, window);
+    if (np > 0 && na > 0) {
+      const CircleWindow window = region.window(fi, c0);
+      for (int a = 0; a < np; ++a)
+        for (int b = 0; b < na; ++b) circle_cone(fi, c0, pw(a), ag(b), emit, window);
+    }
     auto along = [&](const Vec3& axis) {
       const Vec3 t = normalized(axis - dot(axis, fi) * fi);
       if (norm2(t) == 0.0) return;
