@@ -205,20 +205,8 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
     vertex = at_end ? next_vertex(best) : best;
     d = angle_between(c, g_.dirs[vertex]);
   }
-  // V at c over the kept faces, and the two lowest of them (for pair_infeasible).
-  double v = 2.0, second = 2.0;
-  int lowest[2] = {-1, -1};
-  for (int t = faces_begin; t < faces_end; ++t) {
-    const int i = arena_[t];
-    const double cf = dot(c, g_.face_normals[i]);
-    face_cos_[i] = cf;
-    if (cf < v) {
-      second = v, lowest[1] = lowest[0];
-      v = cf, lowest[0] = i;
-    } else if (cf < second) {
-      second = cf, lowest[1] = i;
-    }
-  }
+  double v = 2.0;
+  for (int t = faces_begin; t < faces_end; ++t) v = std::min(v, dot(c, g_.face_normals[arena_[t]]));
 
   const double d_high = d + rho + kBoundMargin;
   if (d_high < pool_.threshold()) return;
@@ -227,7 +215,7 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   bool maybe_feasible = !invisible;
   if (maybe_feasible && pool_.constrained())
     maybe_feasible = v + rho + kBoundMargin >= pool_.v_min() - kConstraintSlack &&
-                     !(v < pool_.v_min() && pair_infeasible(c, rho, lowest, faces_begin, faces_end));
+                     !(v < pool_.v_min() && pair_infeasible(c, rho, faces_begin, faces_end));
   if (!maybe_feasible) {
     // A cell invisible below V_min all over holds no candidate of the constraint circles
     // (docs/normals.md): when only those are sought, it is dropped whatever its D.
@@ -295,14 +283,27 @@ void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int
   arena_.resize(own_arcs);
 }
 
-bool SiteSubdivision::pair_infeasible(const Vec3& c, double rho, const int lowest[2], int faces_begin,
-                                      int faces_end) const {
+bool SiteSubdivision::pair_infeasible(const Vec3& c, double rho, int faces_begin, int faces_end) {
+  // The two lowest faces at c, and every face's c.f for the pairs.
+  int lowest[2] = {-1, -1};
+  double low_cos[2] = {3.0, 3.0};
+  for (int t = faces_begin; t < faces_end; ++t) {
+    const int i = arena_[t];
+    const double cf = dot(c, g_.face_normals[i]);
+    face_cos_[i] = cf;
+    if (cf < low_cos[0]) {
+      lowest[1] = lowest[0], low_cos[1] = low_cos[0];
+      lowest[0] = i, low_cos[0] = cf;
+    } else if (cf < low_cos[1]) {
+      lowest[1] = i, low_cos[1] = cf;
+    }
+  }
   const double level = 2.0 * (pool_.v_min() - kConstraintSlack);
   for (int q = 0; q < 2 && lowest[q] >= 0; ++q) {
     const int a = lowest[q];
     const Vec3& fa = g_.face_normals[a];
     // On the cap n.(f_a + f_b) <= c.(f_a + f_b) + rho |f_a + f_b|, at least c.f_a + c.f_b.
-    const double reach = level - face_cos_[a];
+    const double reach = level - low_cos[q];
     for (int t = faces_begin; t < faces_end; ++t) {
       const int b = arena_[t];
       if (b == a || !(face_cos_[b] < reach)) continue;

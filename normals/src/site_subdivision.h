@@ -263,8 +263,8 @@ class SiteSubdivision {
   // face, cannot: it keeps every cell along the constraint of two nearly opposite faces
   // (a knife-edge fan: on valence-30 and -40 sliver fans 3,000 to 4,800 cells, all but a
   // few hundred of them refined there). Any pair gives a valid proof; as a matter of cost
-  // the two lowest faces at c (lowest, from face_cos_) are paired with the others.
-  bool pair_infeasible(const Vec3& c, double rho, const int lowest[2], int faces_begin, int faces_end) const;
+  // the two lowest faces at c are paired with the others.
+  bool pair_infeasible(const Vec3& c, double rho, int faces_begin, int faces_end);
   void set_aside(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
                  int parent_sites, int stable_levels, double d_high);
   // Fills leaf_points_, leaf_arcs_ and near_ for the cell B(c, rho) from its kept arcs
@@ -300,7 +300,7 @@ class SiteSubdivision {
   RecycledVector<Vec3> lune1_, lune2_, merged_lune1_, merged_lune2_;
   RecycledVector<int> arena_;  // active fan arcs and faces of the cells on the current path
   RecycledVector<double> arc_cos_;  // scratch: cosine of each fan arc's distance at the cell centre
-  RecycledVector<double> face_cos_;  // scratch: c.f_i of each kept face at the cell centre
+  RecycledVector<double> face_cos_;  // scratch of pair_infeasible: c.f_i of the kept faces
   RecycledVector<int> arc_stamp_, vertex_stamp_;
   // Scratch of the cell being classified: (c.u_j, j) of the link vertices within reach.
   RecycledVector<std::pair<double, int>> near_;
