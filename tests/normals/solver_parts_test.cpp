@@ -335,19 +335,38 @@ TEST(SiteSubdivision, LinkVertexIsTheNearestPointOfItsArcsOnlyInItsWedge) {
 // dominates, every great circle that holds an admitted direction (its point nearest c,
 // and points computed as the candidates are, by plane_plane_sphere) is kept; circles
 // well outside are dropped.
-TEST(SiteSubdivision, GreatCircleScreenKeepsEveryCircleThroughTheLeaf) {
-  std::mt19937 rng(41);
+// Random unit vectors and leaves for the constraint pass's screens: a leaf's centre, its
+// radius (1e-9 to 1.6, where the cosine margin dominates at the small end), the cosine
+// offer() admits, as SiteSubdivision::record_leaf sets it, and that cosine's angle.
+struct RandomLeaves {
+  explicit RandomLeaves(unsigned seed) : rng(seed) {}
+  Vec3 unit() { return normalized(Vec3{nd(rng), nd(rng), nd(rng)}); }
+  struct Leaf {
+    Vec3 c;
+    double rho, cos_cap, admitted;
+  };
+  Leaf leaf() {
+    Leaf l;
+    l.c = unit();
+    l.rho = std::pow(10.0, -9.0 + 9.2 * u01(rng));
+    l.cos_cap = std::cos(l.rho + 1e-12) - 1e-15;
+    l.admitted = std::acos(std::min(1.0, l.cos_cap));
+    return l;
+  }
+  std::mt19937 rng;
   std::normal_distribution<double> nd;
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  auto random_unit = [&]() { return normalized(Vec3{nd(rng), nd(rng), nd(rng)}); };
+  std::uniform_real_distribution<double> u01{0.0, 1.0};
+};
+
+TEST(SiteSubdivision, GreatCircleScreenKeepsEveryCircleThroughTheLeaf) {
+  RandomLeaves random(41);
+  std::uniform_real_distribution<double>& u01 = random.u01;
+  std::mt19937& rng = random.rng;
+  auto random_unit = [&]() { return random.unit(); };
   int held = 0, dropped = 0;
   for (int t = 0; t < 20000; ++t) {
-    const Vec3 c = random_unit();
-    const double rho = std::pow(10.0, -9.0 + 9.2 * u01(rng));
-    // The leaf's admitted cosine, as SiteSubdivision::record_leaf sets it.
-    const double cos_cap = std::cos(rho + 1e-12) - 1e-15;
+    const auto [c, rho, cos_cap, admitted] = random.leaf();
     // A circle whose nearest point to c is at a chosen angle, around the cap's edge.
-    const double admitted = std::acos(std::min(1.0, cos_cap));
     const double gap = admitted * (0.5 + u01(rng)) + (t % 3 == 0 ? 1e-8 * u01(rng) : 0.0);
     const Vec3 t1 = normalized(cross(c, random_unit()));
     const Vec3 nearest = std::cos(gap) * c + std::sin(gap) * t1;
@@ -378,16 +397,13 @@ TEST(SiteSubdivision, GreatCircleScreenKeepsEveryCircleThroughTheLeaf) {
 // the leaf admits and the second face leaves feasible (as CandidatePool::consider tests)
 // is built, bit for bit, within the window too; and many quartics are skipped.
 TEST(SiteSubdivision, ConeWindowKeepsEveryConePointTheLeafAdmits) {
-  std::mt19937 rng(43);
-  std::normal_distribution<double> nd;
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  auto random_unit = [&]() { return normalized(Vec3{nd(rng), nd(rng), nd(rng)}); };
+  RandomLeaves random(43);
+  std::uniform_real_distribution<double>& u01 = random.u01;
+  std::mt19937& rng = random.rng;
+  auto random_unit = [&]() { return random.unit(); };
   int admitted_points = 0, skipped = 0;
   for (int t = 0; t < 20000; ++t) {
-    const Vec3 c = random_unit();
-    const double rho = std::pow(10.0, -9.0 + 9.2 * u01(rng));
-    const double cos_cap = std::cos(rho + 1e-12) - 1e-15;  // as SiteSubdivision::record_leaf sets it
-    const double admitted = std::acos(std::min(1.0, cos_cap));
+    const auto [c, rho, cos_cap, admitted] = random.leaf();
     // A point around the cap's edge, on the constraint circle {n.f = c0}.
     const Vec3 p = normalized(std::cos(admitted * 1.5 * u01(rng)) * c +
                               std::sin(admitted * 1.5 * u01(rng)) * normalized(cross(c, random_unit())));
