@@ -645,16 +645,22 @@ void SiteSubdivision::drop_circles_below_another(const Leaf& leaf, std::vector<i
 
 namespace {
 
-// The constraint pass's region in a leaf: the directions offer() admits,
-// n.c >= cos_cap |n|, where the leaf's faces whose constraint circles cross it keep them
-// feasible (the other faces are feasible on all of the leaf). Intersections on great
-// circles that pass outside the leaf would not be offered: they are not built (a
-// valence-40 sliver fan's 16,000 face pairs in 51 leaves). Nor are the quartics of
-// point-arc cones solved where their roots cannot fall in the window of the constraint
-// circle that is in the leaf and feasible (on a valence-40 sliver fan 1,404 quartics
-// took 60 % of a 2.5 ms solve, for 15 candidates in their leaves).
+// Faces within about 25 degrees of a constraint circle's face (normals' cosine above
+// this) do not cut that circle's cone window. Any subset of the faces gives a valid
+// window; such a face keeps about half of the circle, which cuts little from a leaf's
+// arc, and fan-triangulated faces cross a leaf with dozens of such circles (their
+// trigonometry cost the sliver wing a fifth of its most-normal solves).
 constexpr double kWindowFaceCos = 0.9;
 
+// The constraint pass's region in a leaf: the directions offer() admits,
+// n.c >= cos_cap |n|, where the leaf's faces whose constraint circles cross it keep them
+// feasible (the other faces are feasible on all of the leaf; the crossing faces dropped
+// by drop_circles_below_another are feasible wherever the face below them is).
+// Intersections on great circles that pass outside the leaf would not be offered: they
+// are not built (a valence-40 sliver fan's 16,000 face pairs in 51 leaves). Nor are the
+// quartics of point-arc cones solved where their roots cannot fall in the window of the
+// constraint circle that is in the leaf and feasible (on a valence-40 sliver fan 1,404
+// quartics took 60 % of a 2.5 ms solve, for 15 candidates in their leaves).
 struct LeafRegion {
   const FanGeometry& g;
   Vec3 c;
@@ -666,10 +672,6 @@ struct LeafRegion {
     CircleWindow w = circle_window_in_cap(c, cos_cap, h, c0);
     for (int j : crossing) {
       if (w.half_width < 0.0) break;
-      // Any subset of the faces gives a valid window. A face nearly parallel to h keeps
-      // about half of h's circle, which cuts little from a leaf's arc, and fans of
-      // fan-triangulated faces cross a leaf with dozens of such circles: only faces
-      // more than 25 degrees from h are taken.
       const Vec3& f = g.face_normals[j];
       if (dot(f, h) < kWindowFaceCos) w = intersect_windows(w, circle_window_feasible(f, v_min, h, c0));
     }
