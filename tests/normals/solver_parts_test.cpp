@@ -329,18 +329,14 @@ TEST(SiteSubdivision, LinkVertexIsTheNearestPointOfItsArcsOnlyInItsWedge) {
   EXPECT_GT(inside_tied, 5000);
 }
 
-// The constraint pass builds the points of a great circle {n.h = 0} in a leaf only when
-// great_circle_meets_cap says the circle can hold a direction the leaf admits
-// (n.c >= cos_cap). For random leaves, of radii down to 1e-9 where the cosine margin
-// dominates, every great circle that holds an admitted direction (its point nearest c,
-// and points computed as the candidates are, by plane_plane_sphere) is kept; circles
-// well outside are dropped.
 // Random unit vectors and leaves for the constraint pass's screens: a leaf's centre, its
 // radius (1e-9 to 1.6, where the cosine margin dominates at the small end), the cosine
 // offer() admits, as SiteSubdivision::record_leaf sets it, and that cosine's angle.
-struct RandomLeaves {
-  explicit RandomLeaves(unsigned seed) : rng(seed) {}
-  Vec3 unit() { return normalized(Vec3{nd(rng), nd(rng), nd(rng)}); }
+class RandomLeaves {
+ public:
+  explicit RandomLeaves(unsigned seed) : rng_(seed) {}
+  Vec3 unit() { return normalized(Vec3{nd_(rng_), nd_(rng_), nd_(rng_)}); }
+  double uniform() { return u01_(rng_); }
   struct Leaf {
     Vec3 c;
     double rho, cos_cap, admitted;
@@ -348,32 +344,37 @@ struct RandomLeaves {
   Leaf leaf() {
     Leaf l;
     l.c = unit();
-    l.rho = std::pow(10.0, -9.0 + 9.2 * u01(rng));
+    l.rho = std::pow(10.0, -9.0 + 9.2 * uniform());
     l.cos_cap = std::cos(l.rho + 1e-12) - 1e-15;
     l.admitted = std::acos(std::min(1.0, l.cos_cap));
     return l;
   }
-  std::mt19937 rng;
-  std::normal_distribution<double> nd;
-  std::uniform_real_distribution<double> u01{0.0, 1.0};
+
+ private:
+  std::mt19937 rng_;
+  std::normal_distribution<double> nd_;
+  std::uniform_real_distribution<double> u01_{0.0, 1.0};
 };
 
+// The constraint pass builds the points of a great circle {n.h = 0} in a leaf only when
+// great_circle_meets_cap says the circle can hold a direction the leaf admits
+// (n.c >= cos_cap). For random leaves, of radii down to 1e-9 where the cosine margin
+// dominates, every great circle that holds an admitted direction (its point nearest c,
+// and points computed as the candidates are, by plane_plane_sphere) is kept; circles
+// well outside are dropped.
 TEST(SiteSubdivision, GreatCircleScreenKeepsEveryCircleThroughTheLeaf) {
   RandomLeaves random(41);
-  std::uniform_real_distribution<double>& u01 = random.u01;
-  std::mt19937& rng = random.rng;
-  auto random_unit = [&]() { return random.unit(); };
   int held = 0, dropped = 0;
   for (int t = 0; t < 20000; ++t) {
     const auto [c, rho, cos_cap, admitted] = random.leaf();
     // A circle whose nearest point to c is at a chosen angle, around the cap's edge.
-    const double gap = admitted * (0.5 + u01(rng)) + (t % 3 == 0 ? 1e-8 * u01(rng) : 0.0);
-    const Vec3 t1 = normalized(cross(c, random_unit()));
+    const double gap = admitted * (0.5 + random.uniform()) + (t % 3 == 0 ? 1e-8 * random.uniform() : 0.0);
+    const Vec3 t1 = normalized(cross(c, random.unit()));
     const Vec3 nearest = std::cos(gap) * c + std::sin(gap) * t1;
-    const Vec3 h = (0.01 + u01(rng)) * normalized(cross(nearest, cross(c, t1)));
+    const Vec3 h = (0.01 + random.uniform()) * normalized(cross(nearest, cross(c, t1)));
     // The points a candidate formula would give on it: through a random circle n.f = v.
     std::vector<Vec3> points = {nearest};
-    const Vec3 f = random_unit();
+    const Vec3 f = random.unit();
     detail::plane_plane_sphere(h, 0.0, f, dot(f, nearest), [&](const Vec3& n) { points.push_back(n); });
     bool admits = false;
     for (const Vec3& n : points) admits |= dot(n, c) >= cos_cap * norm(n);
@@ -398,26 +399,23 @@ TEST(SiteSubdivision, GreatCircleScreenKeepsEveryCircleThroughTheLeaf) {
 // is built, bit for bit, within the window too; and many quartics are skipped.
 TEST(SiteSubdivision, ConeWindowKeepsEveryConePointTheLeafAdmits) {
   RandomLeaves random(43);
-  std::uniform_real_distribution<double>& u01 = random.u01;
-  std::mt19937& rng = random.rng;
-  auto random_unit = [&]() { return random.unit(); };
   int admitted_points = 0, skipped = 0;
   for (int t = 0; t < 20000; ++t) {
     const auto [c, rho, cos_cap, admitted] = random.leaf();
     // A point around the cap's edge, on the constraint circle {n.f = c0}.
-    const Vec3 p = normalized(std::cos(admitted * 1.5 * u01(rng)) * c +
-                              std::sin(admitted * 1.5 * u01(rng)) * normalized(cross(c, random_unit())));
-    const Vec3 f = random_unit();
+    const Vec3 p = normalized(std::cos(admitted * 1.5 * random.uniform()) * c +
+                              std::sin(admitted * 1.5 * random.uniform()) * normalized(cross(c, random.unit())));
+    const Vec3 f = random.unit();
     const double c0 = dot(f, p);
     // The second face: its circle {n.f2 = c0} passes within about the leaf's radius of p.
-    const double v2 = std::clamp(c0 + admitted * (2.0 * u01(rng) - 1.0), -1.0, 1.0);
-    const Vec3 f2 = normalized(v2 * p + std::sqrt(1.0 - v2 * v2) * normalized(cross(p, random_unit())));
+    const double v2 = std::clamp(c0 + admitted * (2.0 * random.uniform() - 1.0), -1.0, 1.0);
+    const Vec3 f2 = normalized(v2 * p + std::sqrt(1.0 - v2 * v2) * normalized(cross(p, random.unit())));
     // A cone through p (w, g with (p.w)^2 + (p.g)^2 = 1), or a random one.
-    const Vec3 w = random_unit();
-    Vec3 g = random_unit();
+    const Vec3 w = random.unit();
+    Vec3 g = random.unit();
     if (t % 4 != 0) {
       const double cos_a = std::sqrt(std::max(0.0, 1.0 - dot(p, w) * dot(p, w)));
-      const Vec3 q = normalized(cross(p, random_unit()));
+      const Vec3 q = normalized(cross(p, random.unit()));
       g = normalized(cos_a * p + std::sqrt(std::max(0.0, 1.0 - cos_a * cos_a)) * q);
     }
     std::vector<Vec3> whole, windowed;
