@@ -302,13 +302,11 @@ bool SiteSubdivision::pair_infeasible(const Vec3& c, double rho, int faces_begin
   for (int q = 0; q < 2 && lowest[q] >= 0; ++q) {
     const int a = lowest[q];
     const Vec3& fa = g_.face_normals[a];
-    // On the cap n.(f_a + f_b) <= c.(f_a + f_b) + rho |f_a + f_b|, at least c.f_a + c.f_b.
+    // The bound of n.(f_a + f_b) on the cap is at least c.f_a + c.f_b.
     const double reach = level - low_cos[q];
     for (int t = faces_begin; t < faces_end; ++t) {
       const int b = arena_[t];
-      if (b == a || !(face_cos_[b] < reach)) continue;
-      const Vec3 sum = fa + g_.face_normals[b];
-      if (dot(c, sum) + (rho + 1e-15) * norm(sum) + kBoundMargin < level) return true;
+      if (b != a && face_cos_[b] < reach && pair_sum_below_on_cap(c, rho, fa, g_.face_normals[b], level)) return true;
     }
   }
   return false;

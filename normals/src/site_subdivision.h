@@ -73,6 +73,16 @@ inline double pair_cap_cosine(const Vec3& c, double cos_rho, double sin_rho, con
   return dot(c, q) >= 0.0 ? cap_min_dot(c, cos_rho, sin_rho, q) : -2.0;
 }
 
+// Whether no direction n of the cap B(c, rho) (c unit) has n.f_a + n.f_b >= level, so
+// that none has both n.f_a and n.f_b at level / 2 or above: on the cap
+// n.(f_a + f_b) <= c.(f_a + f_b) + rho |f_a + f_b| (the chord is at most the angle). The
+// 1e-15 on rho and the 1e-12 cover the rounding of the sum and of its dot product (a few
+// ulps of unit-length data) by three orders.
+inline bool pair_sum_below_on_cap(const Vec3& c, double rho, const Vec3& f_a, const Vec3& f_b, double level) {
+  const Vec3 sum = f_a + f_b;
+  return dot(c, sum) + (rho + 1e-15) * norm(sum) + 1e-12 < level;
+}
+
 // Whether the great circle {n.h = 0} can hold a direction that a leaf with centre c
 // admits (n.c >= cos_cap |n|, as SiteSubdivision::offer tests): such a direction is
 // within the angle whose cosine is cos_cap of c, so |c.h| <= |h| times its sine. offer's

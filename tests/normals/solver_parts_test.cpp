@@ -470,6 +470,44 @@ TEST(SiteSubdivision, IntersectedWindowsHoldEveryCommonAngle) {
   EXPECT_GT(common, 100000);
 }
 
+// pair_sum_below_on_cap proves that no direction of a cap keeps two faces at V_min (as
+// SiteSubdivision::pair_infeasible uses it). For random caps of radii 1e-9 to 1.6 across
+// the constraint of one face, paired with a nearly opposite face (or a random one), every
+// proof is checked against directions sampled inside the cap and on its rim: none may
+// keep both faces at V_min - slack or above. Nearly opposite pairs give many proofs, and
+// many caps are refused.
+TEST(SiteSubdivision, PairOfFacesProvesACapInfeasibleOnlyWhereNoDirectionIsFeasible) {
+  RandomLeaves random(53);
+  int proofs = 0, refused = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const double rho = random.leaf().rho;
+    const double v_min = std::pow(10.0, -5.0 + 4.0 * random.uniform());
+    const double level = 2.0 * (v_min - detail::kConstraintSlack);
+    const Vec3 f_a = random.unit();
+    // A centre whose visibility of f_a is within two radii of V_min.
+    const double v_c = std::clamp(v_min + 2.0 * rho * (2.0 * random.uniform() - 1.0), -1.0, 1.0);
+    const Vec3 c = normalized(v_c * f_a + std::sqrt(1.0 - v_c * v_c) * normalized(cross(f_a, random.unit())));
+    const double tilt = std::pow(10.0, -6.0 + 5.0 * random.uniform());
+    const Vec3 f_b = t % 4 == 0 ? random.unit() : normalized(-1.0 * f_a + tilt * random.unit());
+    if (!detail::pair_sum_below_on_cap(c, rho, f_a, f_b, level)) {
+      ++refused;
+      continue;
+    }
+    ++proofs;
+    Vec3 e1, e2;
+    detail::orthonormal_complement(c, &e1, &e2);
+    for (int k = 0; k < 64; ++k) {
+      const double angle = (k % 4 == 0 ? 1.0 : std::sqrt(random.uniform())) * rho;
+      const double phi = 2.0 * M_PI * random.uniform();
+      const Vec3 n = std::cos(angle) * c + std::sin(angle) * (std::cos(phi) * e1 + std::sin(phi) * e2);
+      const bool both = dot(n, f_a) >= v_min - detail::kConstraintSlack && dot(n, f_b) >= v_min - detail::kConstraintSlack;
+      EXPECT_FALSE(both) << "cap " << t << " radius " << rho << " sample " << k;
+    }
+  }
+  EXPECT_GT(proofs, 2000);
+  EXPECT_GT(refused, 2000);
+}
+
 // The generator screen keeps an arc only on its fluid side: a direction at its pole
 // passes, its antipode does not, nor a pair of arcs whose poles are antipodal.
 TEST(ArcReachScreen, KeepsArcGeneratorsOnTheirFluidSideOnly) {
