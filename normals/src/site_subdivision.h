@@ -167,6 +167,7 @@ struct SubdivisionStats {
   int set_aside_refined = 0;  // set-aside cells taken up again
   int floors_raised = 0;      // cell centres that raised the pool's floor
   int floors_raised_unlimited = 0;  // of them, while no direction beat the constrained optimum
+  int closed = 0;             // cells left unrefined once all their site subsets were enumerated
 };
 
 class SiteSubdivision {
@@ -201,6 +202,18 @@ class SiteSubdivision {
   // the status. So the refinement sets those cells aside, and the caller refines them
   // (refine_set_aside) only while no such direction is known; a set-aside cell is
   // dropped like any other once it cannot reach the unconstrained threshold.
+  //
+  // Closed cells. Every maximiser in a cell is a candidate of a subset of the cell's
+  // sites (the exactness argument above, for the cell's own cap), so once every subset
+  // of at most three of them is enumerated, refining the cell offers nothing new to the
+  // unconstrained search. Along a ridge of near-ties on a nearly flat fan the leaves
+  // repeat the same handful of sites by the hundred (a valence-40 sliver fan: 10 of its
+  // 857 leaves enumerated a subset no leaf had before), so a small cell there enumerates
+  // its few missing subsets itself and is closed: left unrefined. Its leaves would serve
+  // the later passes only, and they find nothing there: a closed cell is above V_min all
+  // over (no constraint circle crosses it) and holds no concentric pair of sites (no
+  // plateau circle). The extra subsets offer candidates its leaves would not have built,
+  // exact points of the fan like every other candidate (docs/normals.md, "Closed cells").
   //
   // The passes after unconstrained_candidates[_near]: the plateau peaks where the
   // maximisers found are distinct, then, where the constraint limits the optimum, the
@@ -275,6 +288,17 @@ class SiteSubdivision {
   // few hundred of them refined there). Any pair gives a valid proof; as a matter of cost
   // the two lowest faces at c are paired with the others.
   bool pair_infeasible(const Vec3& c, double rho, int faces_begin, int faces_end);
+  // Closes the cell being classified if it may be: at most kCloseMissing subsets of at
+  // most three of its sites (leaf_points_, leaf_arcs_) not enumerated yet, and no
+  // concentric pair among them (plateau_circles). Then enumerates those subsets and
+  // returns true.
+  bool close_cell();
+  // The ids of the cell's sites (points, then n_points_ + merged arc), as subsets use them.
+  void cell_site_ids(std::vector<int>* ids) const;
+  // Offers the candidates of the subset of m sites (ids as cell_site_ids gives them).
+  void offer_subset(const int* sel, int m);
+  // Whether the subset of this key was enumerated (first_time, without inserting it).
+  bool enumerated(std::uint64_t key) const;
   void set_aside(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
                  int parent_sites, int stable_levels, double d_high);
   // Fills leaf_points_, leaf_arcs_ and near_ for the cell B(c, rho) from its kept arcs
@@ -294,6 +318,8 @@ class SiteSubdivision {
   void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end, bool invisible);
   void offer(const Leaf& leaf, const Vec3& n);
   void offer_anywhere(const Vec3& n);
+  static std::uint64_t subset_key(int a, int b, int c);
+  static std::size_t subset_hash(std::uint64_t key);
   bool first_time(int a, int b, int c);
   bool insert_subset(std::uint64_t key);
   void enumerate_new_subsets();

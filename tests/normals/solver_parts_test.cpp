@@ -151,6 +151,14 @@ TEST(SiteSubdivision, CentresNearTheConstraintProbedAsFloorsLeaveTheEnumerationO
   EXPECT_GT(check_probed_fans(5150, {24, 30, 40}, 60, &detail::SubdivisionStats::floors_raised_unlimited), 5);
 }
 
+// A small cell whose site subsets were all enumerated, but for a few it enumerates
+// itself, is closed instead of refined (on nearly flat fans, along their ridges of
+// near-ties). Every maximiser in it is a candidate of one of those subsets, so the
+// optimum, the status and the tie-broken direction stay the enumeration's.
+TEST(SiteSubdivision, ClosedCellsLeaveTheEnumerationOptimum) {
+  EXPECT_GT(check_probed_fans(6262, {30, 40}, 20, &detail::SubdivisionStats::closed), 50);
+}
+
 // The pool's exact D at a direction agrees with the reference distance to the link, and
 // its fluid side with the crossing-parity reference, on random directions and on the
 // directions where two features nearly tie: the bisectors of link-vertex pairs and of
