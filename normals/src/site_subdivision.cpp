@@ -40,13 +40,16 @@ constexpr double kMinRadius = 1e-8;
 // fans such cells have 7 to 12 sites and miss up to a few dozen subsets; their leaves,
 // hundreds of 5 or 6 sites each, would enumerate the same subsets again. Measured in
 // instructions per solve on the 20 slowest fans of bench/normals/most_normal_tail_scan:
-// the slowest went from 15.8 to 8.1 million; allowing 30 missing subsets left it at
+// the slowest went from 15.8 to 7.2 million; allowing 30 missing subsets left it at
 // 11.3 million. Over the 5,000 fans of the scan's first seed the instructions fell by
-// 0.7 %; closing at any radius raised them by 5 %. The check fails at the first subset
+// 0.8 %; closing at any radius raised them by 5 %. The check fails at the first subset
 // beyond the allowance, at once in a region no leaf has reached.
 constexpr int kCloseSites = 12;
 constexpr double kCloseRadius = 1e-2;
 constexpr int kCloseMissing = 60;
+// The close check looks for the cell's sites among those of the last kRecentSets leaves
+// and closed cells first: neighbours along a ridge share theirs.
+constexpr int kRecentSets = 64;
 
 // Under a binding visibility constraint, or in a cell that reaches below V_min, a fluid
 // cell centre whose D exceeds the threshold by more than kProbeReach cell radii plus
@@ -491,21 +494,11 @@ bool SiteSubdivision::close_cell() {
   thread_local std::vector<std::array<int, 3>> missing;
   cell_site_ids(&ids);
   missing.clear();
-  const int n = static_cast<int>(ids.size());
-  // Whether the subset is enumerated, or noted as missing within the allowance.
-  auto known = [&](int a, int b, int c) {
-    if (enumerated(subset_key(a, b, c))) return true;
-    missing.push_back({a, b, c});
-    return static_cast<int>(missing.size()) <= kCloseMissing;
-  };
-  for (int a = 0; a < n; ++a) {
-    if (!known(ids[a], -1, -1)) return false;
-    for (int b = a + 1; b < n; ++b) {
-      if (!known(ids[a], ids[b], -1)) return false;
-      for (int c = b + 1; c < n; ++c)
-        if (!known(ids[a], ids[b], ids[c])) return false;
-    }
-  }
+  SiteSet set;
+  const bool as_set = site_set(ids, &set);
+  // Within a set whose subsets were all enumerated, none is missing; otherwise each is
+  // looked up.
+  if (!(as_set && within_enumerated_set(set)) && !missing_subsets(ids, &missing)) return false;
   thread_local std::vector<PlateauCircle> circles;
   circles.clear();
   const SiteSubset sub{leaf_points_.data(), static_cast<int>(leaf_points_.size()), leaf_arcs_.data(),
@@ -516,7 +509,45 @@ bool SiteSubdivision::close_cell() {
     first_time(m[0], m[1], m[2]);
     offer_subset(m.data(), m[1] < 0 ? 1 : (m[2] < 0 ? 2 : 3));
   }
+  if (as_set) enumerated_sets_.push_back(set);
   return true;
+}
+
+bool SiteSubdivision::missing_subsets(const std::vector<int>& ids, std::vector<std::array<int, 3>>* missing) const {
+  const int n = static_cast<int>(ids.size());
+  // Whether the subset is enumerated, or noted as missing within the allowance.
+  auto known = [&](int a, int b, int c) {
+    if (enumerated(subset_key(a, b, c))) return true;
+    missing->push_back({a, b, c});
+    return static_cast<int>(missing->size()) <= kCloseMissing;
+  };
+  for (int a = 0; a < n; ++a) {
+    if (!known(ids[a], -1, -1)) return false;
+    for (int b = a + 1; b < n; ++b) {
+      if (!known(ids[a], ids[b], -1)) return false;
+      for (int c = b + 1; c < n; ++c)
+        if (!known(ids[a], ids[b], ids[c])) return false;
+    }
+  }
+  return true;
+}
+
+bool SiteSubdivision::site_set(const std::vector<int>& ids, SiteSet* set) {
+  *set = {0, 0};
+  for (int id : ids) {
+    if (id >= 128) return false;
+    (*set)[id >> 6] |= std::uint64_t(1) << (id & 63);
+  }
+  return true;
+}
+
+bool SiteSubdivision::within_enumerated_set(const SiteSet& set) const {
+  const int n = static_cast<int>(enumerated_sets_.size());
+  for (int t = n - 1; t >= std::max(0, n - kRecentSets); --t) {
+    const SiteSet& m = enumerated_sets_[t];
+    if ((set[0] & ~m[0]) == 0 && (set[1] & ~m[1]) == 0) return true;
+  }
+  return false;
 }
 
 // Site ids: points 0 .. n_points_ - 1, then merged arcs.
@@ -615,6 +646,8 @@ void SiteSubdivision::enumerate_new_subsets() {
       }
     }
   }
+  SiteSet set;
+  if (site_set(ids, &set)) enumerated_sets_.push_back(set);
 }
 
 void SiteSubdivision::record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end,

@@ -42,6 +42,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -293,6 +294,15 @@ class SiteSubdivision {
   // concentric pair among them (plateau_circles). Then enumerates those subsets and
   // returns true.
   bool close_cell();
+  // A set of site ids below 128 as bits; false (and no set) when an id is larger.
+  using SiteSet = std::array<std::uint64_t, 2>;
+  static bool site_set(const std::vector<int>& ids, SiteSet* set);
+  // Whether the set lies within that of one of the last leaves or closed cells, all of
+  // whose subsets were enumerated.
+  bool within_enumerated_set(const SiteSet& set) const;
+  // Appends the subsets of the ids not enumerated yet to *missing; false once there are
+  // more than kCloseMissing.
+  bool missing_subsets(const std::vector<int>& ids, std::vector<std::array<int, 3>>* missing) const;
   // The ids of the cell's sites (points, then n_points_ + merged arc), as subsets use them.
   void cell_site_ids(std::vector<int>* ids) const;
   // Offers the candidates of the subset of m sites (ids as cell_site_ids gives them).
@@ -350,6 +360,8 @@ class SiteSubdivision {
   // Sorted site triples (ids + 1, 0 for an absent one) already enumerated, open
   // addressing.
   RecycledVector<std::uint64_t> subset_table_;
+  // Site sets of the leaves and closed cells (site_set), whose subsets were all enumerated.
+  RecycledVector<SiteSet> enumerated_sets_;
   std::size_t subset_count_ = 0;
   int n_points_ = 0;
   bool offer_subsets_ = true;
