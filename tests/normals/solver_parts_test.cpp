@@ -112,25 +112,26 @@ TEST(SiteSubdivision, SetAsideInvisibleCellsLeaveTheEnumerationStatus) {
 }
 
 // The constrained subdivision on the CAD-like fans of the given valences (per_shape of
-// each shape and offset); where counter (a SubdivisionStats field) shows probes that
-// raised the floor, the run must still reach the enumeration's optimum and status, and
-// the default solver its tie-broken direction: a floor above every candidate would
-// mean the candidates missed the optimum. Returns how many fans were probed.
-int check_probed_fans(unsigned seed, std::initializer_list<int> valences, int per_shape,
-                      int detail::SubdivisionStats::*counter) {
+// each shape and offset); where counter (a SubdivisionStats field) shows that a shortcut
+// fired (probes that raised the floor, closed cells), the run must still reach the
+// enumeration's optimum and status, and the default solver its tie-broken direction: a
+// floor above every candidate would mean the candidates missed the optimum. Returns how
+// many fans the shortcut fired on.
+int check_fans_where_counted(unsigned seed, std::initializer_list<int> valences, int per_shape,
+                             int detail::SubdivisionStats::*counter) {
   std::mt19937 rng(seed);
-  int probed = 0;
+  int fired = 0;
   testing_fans::for_each_cad_fan(rng, valences, per_shape, [&](const FanGeometry& g, const std::string& label) {
     SubdivisionOutcome run;
     if (!run_subdivision(g, true, &run) || run.stats.*counter == 0) return;
-    ++probed;
+    ++fired;
     EXPECT_GE(run.best_constrained, run.floor - default_tolerances().normality_tie) << label;
     const MostNormalResult oracle = most_normal_by_enumeration(g, default_tolerances(), true);
     EXPECT_NEAR(run.best_constrained, oracle.normality, default_tolerances().normality_tie) << label;
     EXPECT_EQ(run.limited, oracle.status == NormalStatus::kVisibilityConstrained) << label;
     EXPECT_TRUE(testing_fans::same_optimum(g, true, most_normal_normal(g), oracle)) << label;
   });
-  return probed;
+  return fired;
 }
 
 // Where the constraint binds, feasible cell centres far above the threshold raise the
@@ -138,7 +139,7 @@ int check_probed_fans(unsigned seed, std::initializer_list<int> valences, int pe
 // optimum, the status and the tie-broken direction stay the enumeration's.
 TEST(SiteSubdivision, CentresProbedAsFloorsLeaveTheEnumerationOptimum) {
   // Probes fire on a few per cent of the CAD-like fans of valence 24 and up.
-  EXPECT_GT(check_probed_fans(4141, {24, 30}, 30, &detail::SubdivisionStats::floors_raised), 5);
+  EXPECT_GT(check_fans_where_counted(4141, {24, 30}, 30, &detail::SubdivisionStats::floors_raised), 5);
 }
 
 // The probes fire also before any direction beats the constrained optimum, in cells that
@@ -148,7 +149,7 @@ TEST(SiteSubdivision, CentresProbedAsFloorsLeaveTheEnumerationOptimum) {
 // tie-broken direction the enumeration's.
 TEST(SiteSubdivision, CentresNearTheConstraintProbedAsFloorsLeaveTheEnumerationOptimum) {
   // They fire on about one CAD-like fan in a hundred of valence 24 to 40.
-  EXPECT_GT(check_probed_fans(5150, {24, 30, 40}, 60, &detail::SubdivisionStats::floors_raised_unlimited), 5);
+  EXPECT_GT(check_fans_where_counted(5150, {24, 30, 40}, 60, &detail::SubdivisionStats::floors_raised_unlimited), 5);
 }
 
 // A small cell whose site subsets were all enumerated, but for a few it enumerates
@@ -156,7 +157,7 @@ TEST(SiteSubdivision, CentresNearTheConstraintProbedAsFloorsLeaveTheEnumerationO
 // near-ties). Every maximiser in it is a candidate of one of those subsets, so the
 // optimum, the status and the tie-broken direction stay the enumeration's.
 TEST(SiteSubdivision, ClosedCellsLeaveTheEnumerationOptimum) {
-  EXPECT_GT(check_probed_fans(6262, {30, 40}, 20, &detail::SubdivisionStats::closed), 50);
+  EXPECT_GT(check_fans_where_counted(6262, {30, 40}, 20, &detail::SubdivisionStats::closed), 50);
 }
 
 // The pool's exact D at a direction agrees with the reference distance to the link, and
