@@ -1,3 +1,4 @@
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "blayer/quality/mesh_check.h"
 #include "commands.h"
 #include "growth_options.h"
+#include "huge_pages.h"
 #include "mesh_output.h"
 #include "surface_options.h"
 
@@ -212,6 +214,18 @@ void print_written(const ExtrudeOutputs& o, const MeshCheckReport& check, double
   std::printf(" (%.2f s in all)\n", total_seconds);
 }
 
+// The run's peak resident memory (this process; the fill's isolated TetGen run is a
+// child with its own) and whether its large arrays were on huge pages (huge_pages.h).
+void print_memory() {
+  rusage self{}, children{};
+  ::getrusage(RUSAGE_SELF, &self);
+  ::getrusage(RUSAGE_CHILDREN, &children);
+  std::printf("memory: peak %.1f MB resident", static_cast<double>(self.ru_maxrss) / 1024.0);
+  if (children.ru_maxrss > 0)
+    std::printf(", largest child process %.1f MB", static_cast<double>(children.ru_maxrss) / 1024.0);
+  std::printf("; huge pages %s\n", huge_page_state(current_huge_page_setup(0, nullptr)).c_str());
+}
+
 }  // namespace
 
 int run_extrude_command(const ParamValues& params) {
@@ -265,6 +279,7 @@ int run_extrude_command(const ParamValues& params) {
   outputs.commit();
   print_patches(patches);
   print_written(out, check, check_seconds, total.seconds());
+  print_memory();
   // A valid, written mesh that is thinner than the user requires: its own exit status.
   const double required = params.get_real("require-thickness");
   const double reached = 1.0 - result.report.thin.total_columns;

@@ -9,10 +9,12 @@
 
 #include "blayer/core/errors.h"
 #include "commands.h"
+#include "huge_pages.h"
 #include "parameters.h"
 
 int main(int argc, char** argv) {
   using namespace blayer;
+  reexecute_on_huge_pages(argc, argv);  // before anything is allocated or printed
   CLI::App app{"blayer: prism boundary-layer meshes for RANS CFD"};
   app.require_subcommand(1);
   app.fallthrough(false);

@@ -1,0 +1,94 @@
+#include "huge_pages.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#if defined(__GLIBC__)
+#include <gnu/libc-version.h>
+#endif
+
+#include "blayer/core/address_sanitizer.h"
+
+namespace blayer {
+
+namespace {
+
+constexpr const char* kTunable = "glibc.malloc.hugetlb";
+constexpr const char* kSettingVariable = "BLAYER_HUGE_PAGES";
+
+std::optional<std::string> variable(const char* name) {
+  const char* v = std::getenv(name);
+  if (!v) return std::nullopt;
+  return std::string(v);
+}
+
+bool glibc_has_tunable(const HugePageSetup& s) {
+  return s.glibc_major > 2 || (s.glibc_major == 2 && s.glibc_minor >= 35);
+}
+
+bool builds_or_reads_meshes(const std::string& command) {
+  return command == "extrude" || command == "normals" || command == "check";
+}
+
+}  // namespace
+
+std::string thp_mode_of(const std::string& mode_file) {
+  const std::size_t open = mode_file.find('['), close = mode_file.find(']', open);
+  if (open == std::string::npos || close == std::string::npos) return "";
+  return mode_file.substr(open + 1, close - open - 1);
+}
+
+std::optional<std::string> huge_page_tunables(const HugePageSetup& s) {
+  if (s.setting || !builds_or_reads_meshes(s.command) || !s.own_malloc || !glibc_has_tunable(s)) return std::nullopt;
+  if (s.preload && s.preload->find("vgpreload") != std::string::npos) return std::nullopt;
+  if (s.thp_mode != "madvise") return std::nullopt;
+  if (!s.tunables || s.tunables->empty()) return std::string(kTunable) + "=1";
+  if (s.tunables->find(kTunable) != std::string::npos) return std::nullopt;
+  return *s.tunables + ":" + kTunable + "=1";
+}
+
+std::string huge_page_state(const HugePageSetup& s) {
+  if (s.thp_mode == "always") return "on (system-wide)";
+  const bool advised = s.tunables && s.tunables->find(std::string(kTunable) + "=1") != std::string::npos;
+  return s.thp_mode == "madvise" && advised && s.own_malloc && glibc_has_tunable(s) ? "on" : "off";
+}
+
+HugePageSetup current_huge_page_setup(int argc, char** argv) {
+  HugePageSetup s;
+  s.tunables = variable("GLIBC_TUNABLES");
+  s.setting = variable(kSettingVariable);
+  s.preload = variable("LD_PRELOAD");
+  std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::stringstream text;
+  text << mode.rdbuf();
+  s.thp_mode = thp_mode_of(text.str());
+#if defined(__GLIBC__)
+  std::sscanf(gnu_get_libc_version(), "%d.%d", &s.glibc_major, &s.glibc_minor);
+#endif
+  s.own_malloc = !kAddressSanitizer;
+  s.command = argc > 1 ? argv[1] : "";
+  return s;
+}
+
+void reexecute_on_huge_pages(int argc, char** argv) {
+  const std::optional<std::string> tunables = huge_page_tunables(current_huge_page_setup(argc, argv));
+  if (!tunables) return;
+  // The re-executed process finds the setting and stays: one exec at most, whatever the
+  // C library does with GLIBC_TUNABLES.
+  const std::optional<std::string> before = variable("GLIBC_TUNABLES");
+  if (::setenv(kSettingVariable, "1", 1) == 0 && ::setenv("GLIBC_TUNABLES", tunables->c_str(), 1) == 0)
+    ::execv("/proc/self/exe", argv);
+  // No /proc, or the binary is gone: this process runs on, with 4 KiB pages, and its
+  // environment says so again (the summary reads it).
+  ::unsetenv(kSettingVariable);
+  if (before)
+    ::setenv("GLIBC_TUNABLES", before->c_str(), 1);
+  else
+    ::unsetenv("GLIBC_TUNABLES");
+}
+
+}  // namespace blayer
