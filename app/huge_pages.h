@@ -3,7 +3,7 @@
 // the M6 571k surface, 719,000 faults and a third of the run's wall time. glibc's malloc
 // advises the kernel to back its large chunks with 2 MiB pages when the tunable
 // glibc.malloc.hugetlb=1 is set (glibc 2.35 and later, with the kernel's THP mode
-// "madvise", Debian's default), but glibc reads its tunables only when a process
+// "madvise"), but glibc reads its tunables only when a process
 // starts: the command line re-executes itself once, at its start, with the tunable
 // added. BLAYER_HUGE_PAGES=0 turns this off; the re-executed process finds it set to 1.
 #pragma once
