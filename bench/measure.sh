@@ -1,7 +1,9 @@
 # Sourced by the comparison benches: measure LABEL COMMAND... runs COMMAND with its
 # output in $work/LABEL.log, prints its wall time and peak resident memory, and leaves
 # the seconds in $work/LABEL.secs for the ratio: the fastest of the runs of LABEL so
-# far, since on a shared machine the slower runs measure the neighbours. Needs $work and
+# far, since on a shared machine the slower runs measure the neighbours. The peak
+# memory of the largest run so far goes to $work/LABEL.kb (memory does not depend on
+# the neighbours: the largest run is the one a user must plan for). Needs $work and
 # GNU time (/usr/bin/time).
 measure() {
   local label="$1"; shift
@@ -11,8 +13,15 @@ measure() {
   if [ ! -f "$work/$label.secs" ] || [ "$(echo "$secs < $(cat "$work/$label.secs")" | bc -l)" = 1 ]; then
     echo "$secs" > "$work/$label.secs"
   fi
+  if [ ! -f "$work/$label.kb" ] || [ "$kb" -gt "$(cat "$work/$label.kb")" ]; then
+    echo "$kb" > "$work/$label.kb"
+  fi
 }
 
 ratio() {  # ratio A B: seconds of A over seconds of B
   echo "$(cat "$work/$1.secs") / $(cat "$work/$2.secs")" | bc -l | cut -c1-5
+}
+
+memory_ratio() {  # memory_ratio A B: the peak memory of A's largest run over B's
+  printf "%.3f" "$(echo "$(cat "$work/$1.kb") / $(cat "$work/$2.kb")" | bc -l)"
 }
