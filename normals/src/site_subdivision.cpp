@@ -107,6 +107,29 @@ bool fluid_at_vertex(const FanGeometry& g, int j, const Vec3& n) {
   return cn * si - sn * ci > 0.0;
 }
 
+// Calls visit(sel, m) on every subset of one, two or three of the ids, in the order a,
+// (a, b), (a, b, c) for a < b < c (the order fixes which candidate a tie keeps); stops
+// and returns false as soon as visit does.
+template <class Visit>
+bool for_each_small_subset(const std::vector<int>& ids, Visit&& visit) {
+  const int n = static_cast<int>(ids.size());
+  for (int a = 0; a < n; ++a) {
+    if (!visit(&ids[a], 1)) return false;
+    for (int b = a + 1; b < n; ++b) {
+      const int pair[2] = {ids[a], ids[b]};
+      if (!visit(pair, 2)) return false;
+      for (int c = b + 1; c < n; ++c) {
+        const int triple[3] = {ids[a], ids[b], ids[c]};
+        if (!visit(triple, 3)) return false;
+      }
+    }
+  }
+  return true;
+}
+
+// The subset's ids as first_time and subset_key take them (-1 for an absent one).
+std::array<int, 3> padded(const int* sel, int m) { return {sel[0], m > 1 ? sel[1] : -1, m > 2 ? sel[2] : -1}; }
+
 }  // namespace
 
 SiteSubdivision::SiteSubdivision(const FanSites& sites, CandidatePool* pool)
@@ -514,22 +537,13 @@ bool SiteSubdivision::close_cell() {
 }
 
 bool SiteSubdivision::missing_subsets(const std::vector<int>& ids, std::vector<std::array<int, 3>>* missing) const {
-  const int n = static_cast<int>(ids.size());
-  // Whether the subset is enumerated, or noted as missing within the allowance.
-  auto known = [&](int a, int b, int c) {
-    if (enumerated(subset_key(a, b, c))) return true;
-    missing->push_back({a, b, c});
+  // Each subset is enumerated, or noted as missing within the allowance.
+  return for_each_small_subset(ids, [&](const int* sel, int m) {
+    const std::array<int, 3> k = padded(sel, m);
+    if (enumerated(subset_key(k[0], k[1], k[2]))) return true;
+    missing->push_back(k);
     return static_cast<int>(missing->size()) <= kCloseMissing;
-  };
-  for (int a = 0; a < n; ++a) {
-    if (!known(ids[a], -1, -1)) return false;
-    for (int b = a + 1; b < n; ++b) {
-      if (!known(ids[a], ids[b], -1)) return false;
-      for (int c = b + 1; c < n; ++c)
-        if (!known(ids[a], ids[b], ids[c])) return false;
-    }
-  }
-  return true;
+  });
 }
 
 bool SiteSubdivision::site_set(const std::vector<int>& ids, SiteSet* set) {
@@ -634,18 +648,11 @@ void SiteSubdivision::cell_site_ids(std::vector<int>* ids) const {
 void SiteSubdivision::enumerate_new_subsets() {
   thread_local std::vector<int> ids;
   cell_site_ids(&ids);
-  const int n = static_cast<int>(ids.size());
-  for (int a = 0; a < n; ++a) {
-    if (first_time(ids[a], -1, -1)) offer_subset(&ids[a], 1);
-    for (int b = a + 1; b < n; ++b) {
-      const int pair[2] = {ids[a], ids[b]};
-      if (first_time(ids[a], ids[b], -1)) offer_subset(pair, 2);
-      for (int c = b + 1; c < n; ++c) {
-        const int triple[3] = {ids[a], ids[b], ids[c]};
-        if (first_time(ids[a], ids[b], ids[c])) offer_subset(triple, 3);
-      }
-    }
-  }
+  for_each_small_subset(ids, [&](const int* sel, int m) {
+    const std::array<int, 3> k = padded(sel, m);
+    if (first_time(k[0], k[1], k[2])) offer_subset(sel, m);
+    return true;
+  });
   SiteSet set;
   if (site_set(ids, &set)) enumerated_sets_.push_back(set);
 }
