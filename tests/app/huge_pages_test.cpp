@@ -3,8 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
 #include "../io/temp_dir.h"
 #include "run_cli.h"
@@ -93,13 +91,6 @@ TEST(HugePages, StateSaysWhetherTheRunningProcessGetsThem) {
   EXPECT_EQ(huge_page_state(s), "on (system-wide)");
 }
 
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // The re-executed run is the same run: same arguments, same mesh to the byte; its
 // summary reports what this machine gives it (the state the test expects is worked out
 // from the same setup the command line reads).
@@ -127,7 +118,7 @@ TEST(HugePages, ReexecutedExtrusionWritesTheSameMeshAndSaysItsPages) {
   EXPECT_NE(run.out.find("; huge pages " + expected + "\n"), std::string::npos) << expected << "\n" << run.out;
   EXPECT_NE(run.out.find("memory: peak "), std::string::npos) << run.out;
 
-  const std::string a = file_bytes(dir.file("off.vtu")), b = file_bytes(dir.file("run.vtu"));
+  const std::string a = testing::slurp(dir.file("off.vtu")), b = testing::slurp(dir.file("run.vtu"));
   EXPECT_GT(a.size(), 1000u);
   EXPECT_TRUE(a == b) << "the meshes differ: " << a.size() << " and " << b.size() << " bytes";
 }
