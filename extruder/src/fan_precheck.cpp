@@ -12,6 +12,15 @@ namespace blayer {
 
 namespace {
 
+// The layers the precheck builds: the first only. A fan cell that folds higher up (a
+// short ridge edge under tall layers) stops its fan's columns there while marching, as
+// any failing cell stops its columns. Falling the point back instead made each
+// neighbour on the ridge a ridge end whose split cells folded in the next round, a
+// cascade that took every fan of a perforated CAD block (bench/make_perforated_block.py).
+// A fan that fails its first layer grows nothing and would fall back after a marching
+// attempt anyway: found here, it costs no rerun.
+constexpr int kPrecheckedLayers = 1;
+
 std::uint64_t bits(double x) {
   std::uint64_t b;
   std::memcpy(&b, &x, sizeof b);
@@ -61,7 +70,7 @@ FanPrecheck::Round FanPrecheck::round_of(const TriSurface& wall, const ColumnLay
   Round r;
   r.run_start.assign(static_cast<std::size_t>(nc) + 1, 0);
   for (int c = 0; c < nc; ++c) {
-    grown[c] = dirs.ok[c] ? std::min(plan.planned_layers[c], plan.n_layers) : 0;
+    grown[c] = dirs.ok[c] ? std::min({plan.planned_layers[c], plan.n_layers, kPrecheckedLayers}) : 0;
     r.run_start[c + 1] = r.run_start[c] + (needed[c] ? 2 + 3 * static_cast<std::size_t>(grown[c]) : 0);
   }
   r.runs.resize(r.run_start[nc]);
@@ -164,7 +173,7 @@ std::vector<int> FanPrecheck::failing_points(const TriSurface& wall, const Colum
   // Column tops: ids nv + c (the layer's base) and nv + nc + c (one layer up).
   std::vector<Vec3> base(nc), up(nc);
   for (int c = 0; c < nc; ++c) base[c] = wall.points[layout.wall_point[c]];
-  for (int k = 0; k < plan.n_layers; ++k) {
+  for (int k = 0; k < std::min(plan.n_layers, kPrecheckedLayers); ++k) {
     std::vector<char> grows(nc, 0);
     for (int c = 0; c < nc; ++c) {
       if (current.grown(c) <= k) continue;

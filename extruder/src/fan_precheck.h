@@ -1,8 +1,9 @@
-// The straight-layer precheck of fan points (extrude_layers): before marching, the fan
-// cells (strips, strip ends, corner patches, the triangles split at ridge ends and the
-// wall triangles on fan columns) are built on straight columns at their planned heights
-// and tested exactly, layer by layer; short ridge edges under tall layers fold them.
-// The fan points of a failing cell fall back to one column, and the layout is rebuilt.
+// The straight-layer precheck of fan points (extrude_layers): before marching, the
+// first layer of the fan cells (strips, strip ends, corner patches, the triangles split
+// at ridge ends and the wall triangles on fan columns) is built on straight columns at
+// its planned height and tested exactly. The fan points of a failing cell fall back to
+// one column, and the layout is rebuilt. Cells that fold higher up are left to the march,
+// which stops their columns there (fan_precheck.cpp says why).
 //
 // Rounds: each rebuilt layout is checked again, and most of its fan elements are the
 // previous round's, on columns through the same points. The validity test is a pure
@@ -30,12 +31,11 @@ namespace blayer {
 
 class FanPrecheck {
  public:
-  // The wall points (ascending) of the fan points of `layout` whose cells fail on
-  // straight columns along dirs at plan's heights, each column's step stretched to its
-  // height above the wall planes (capped at params.max_step_stretch).
+  // The wall points (ascending) of the fan points of `layout` whose first-layer cells
+  // fail on straight columns along dirs at plan's first height, each column's step
+  // stretched to its height above the wall planes (capped at params.max_step_stretch).
   // last_round: the caller needs only to know whether any fan point fails (all of them
-  // fall back then); the check stops after the first layer where one does, returning
-  // the points failed so far, and keeps no records.
+  // fall back then): the round keeps no records.
   std::vector<int> failing_points(const TriSurface& wall, const ColumnLayout& layout, const WallPlanes& planes,
                                   const StepDirections& dirs, const ColumnPlan& plan, const ExtrusionParams& params,
                                   bool last_round = false);
@@ -51,9 +51,10 @@ class FanPrecheck {
     bool operator<(const ElementKey& o) const;
   };
   // One round's straight columns and the elements that passed. A column's trajectory
-  // (its id is the column) is its run through the layers, as bits: its wall point, the
-  // number of layers it grows (0 without a direction) and the top of each, its step
-  // stretched to its height above the wall planes (capped at params.max_step_stretch).
+  // (its id is the column) is its run through the prechecked layers, as bits: its wall
+  // point, the number of those layers it grows (0 without a direction) and the top of
+  // each, its step stretched to its height above the wall planes (capped at
+  // params.max_step_stretch).
   struct Round {
     std::vector<std::uint64_t> runs;                        // the trajectories, concatenated
     std::vector<std::size_t> run_start;                     // per column, with a final end

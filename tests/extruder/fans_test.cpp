@@ -553,6 +553,23 @@ TEST(FanExtrusion, LBlockMixedCornersAreValidAndConforming) {
   EXPECT_EQ(r.report.fans.failed_points, 0);
 }
 
+// Layers almost as thick as the block (T = 0.81, the L's arms 1 wide): the columns of the
+// faces at the concave edge, which leave along their faces' normals, meet in the top
+// layer. Those cells stop their columns there, fans included; the fans keep their points
+// (falling them back would give the convex edges' first cells a leaning column) and
+// every column grows its first layer.
+TEST(FanExtrusion, FansWhoseUpperLayersFoldKeepTheirPointsAndStopThere) {
+  const TriSurface s = l_block();
+  const ExtrusionResult r = extrude_layers(s, fan_params(6, 0.08, 1.3));
+  expect_conforming_valid_layers(s, r);
+  const ColumnLayout l = layout_of(s);
+  EXPECT_EQ(r.report.fans.points, l.n_fan_points);
+  EXPECT_EQ(r.report.fans.fallback_points, 0);
+  ASSERT_EQ(r.report.columns_per_layer.size(), 6u);
+  EXPECT_EQ(r.report.columns_per_layer.front(), l.n_columns());
+  EXPECT_LT(r.report.columns_per_layer.back(), l.n_columns()) << "no upper layer folded: the case tests nothing";
+}
+
 TEST(FanExtrusion, RidgeEndsCloseWithSplitCellsThatConform) {
   const TriSurface w = wedge_prism(15.0, 4.0, 2.0, 4);
   ExtrusionParams p = fan_params(4, 0.002, 1.2);
