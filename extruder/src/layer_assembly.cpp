@@ -26,10 +26,16 @@ LayerAssembler::LayerAssembler(const TriSurface& wall, const ColumnLayout& layou
 
 void LayerAssembler::reserve_layers(int n_layers) {
   const std::size_t layers = static_cast<std::size_t>(std::max(0, n_layers));
-  std::size_t ids = 0;
-  for (const LayerElement& e : elements_) ids += e.kind == ElementKind::kStrip ? 8 : 6;  // hex, wedge
+  // Per layer, at most: a strip's hex; a split triangle's or strip end's pyramid and tet
+  // (or two tets); a triangle's wedge.
+  std::size_t ids = 0, cells = 0;
+  for (const LayerElement& e : elements_) {
+    const bool split = e.kind == ElementKind::kStripEnd || e.split_at >= 0;
+    ids += split ? 9 : e.kind == ElementKind::kStrip ? 8 : 6;
+    cells += split ? 2 : 1;
+  }
+  cells *= layers;
   const std::size_t points = mesh_.points.size() + layers * in_fan_.size();
-  const std::size_t cells = layers * elements_.size();
   mesh_.points.reserve(points);
   point_normal_.reserve(points);
   point_column_.reserve(points);

@@ -13,6 +13,7 @@
 #include "blayer/extruder/column_heights.h"
 #include "blayer/extruder/extrude_layers.h"
 #include "blayer/extruder/fan_layout.h"
+#include "blayer/extruder/layer_assembly.h"
 #include "blayer/extruder/front_checker.h"
 #include "blayer/extruder/step_directions.h"
 #include "blayer/extruder/wall_planes.h"
@@ -591,6 +592,36 @@ TEST(FanExtrusion, RidgeEndsCloseWithSplitCellsThatConform) {
   EXPECT_EQ(wall_layer[CellType::kPyramid], 2 * 4);
   EXPECT_EQ(wall_layer[CellType::kWedge], 26 - 2 * 4 + 2 * 5);  // other triangles, fan wedges
   EXPECT_EQ(wall_layer[CellType::kHex], 0);
+}
+
+// Split cells at ridge ends are two cells of nine nodes per layer: the room reserved for
+// layers in which every column grows holds them, so the mesh's arrays never reallocate.
+TEST(FanAssembly, ReservedLayersHoldTheSplitCellsOfRidgeEnds) {
+  const TriSurface w = wedge_prism(15.0, 4.0, 2.0, 4);
+  const ColumnLayout l = layout_of(w, 120.0, 40.0);
+  int n_split = 0;
+  for (const LayerElement& e : l.elements) n_split += e.kind == ElementKind::kStripEnd || e.split_at >= 0;
+  ASSERT_GT(n_split, 0);
+  const int nc = l.n_columns();
+  const StepDirections d{{}, l.direction, std::vector<double>(nc, 1.0), std::vector<char>(nc, 1)};
+  const WallTopology topo = build_column_topology(l);
+  ColumnState columns = ColumnState::on_wall(l.front.points, topo.used, l.wall_point);
+  const int layers = 3;
+  LayerAssembler reserved_only(w, l, d);
+  reserved_only.reserve_layers(layers);
+  const VolumeMesh reserved = reserved_only.take_mesh();
+  LayerAssembler a(w, l, d);
+  a.reserve_layers(layers);
+  for (int k = 0; k < layers; ++k) {
+    std::vector<Vec3> next(nc);
+    for (int c = 0; c < nc; ++c) next[c] = columns.top[c] + 0.01 * d.n[c];
+    a.commit_layer(k, std::vector<char>(nc, 1), next, d, &columns);
+  }
+  const VolumeMesh m = a.take_mesh();
+  ASSERT_GT(m.n_cells(), static_cast<std::size_t>(layers) * l.elements.size()) << "no element split in two";
+  EXPECT_EQ(m.connectivity.capacity(), reserved.connectivity.capacity());
+  EXPECT_EQ(m.offsets.capacity(), reserved.offsets.capacity());
+  EXPECT_EQ(m.cell_types.capacity(), reserved.cell_types.capacity());
 }
 
 TEST(FanExtrusion, AnOpenBoxsFansEndAtItsRim) {

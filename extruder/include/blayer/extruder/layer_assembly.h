@@ -23,11 +23,11 @@ class LayerAssembler {
   // The columns of a layout; wall point w's `normal` is that of its first column.
   LayerAssembler(const TriSurface& wall, const ColumnLayout& layout, const StepDirections& wall_directions);
 
-  // Reserves room for n_layers layers in which every column grows: the mesh's arrays
-  // then never reallocate while they grow, which briefly held both the old and the new
-  // buffer of the largest ones (the peak memory of a large run), and keep no slack.
-  // Runs whose columns stop need less; closure cells can in rare cases need a little
-  // more, and then the arrays grow as usual.
+  // Reserves room for the most cells n_layers layers can hold (each element's largest
+  // split, with every column growing): the mesh's arrays then never reallocate while
+  // they grow, which briefly held both the old and the new buffer of the largest ones
+  // (the peak memory of a large run). Runs whose columns stop, or whose elements are
+  // not split, use less.
   void reserve_layers(int n_layers);
 
   // Appends layer k: a point for every column with grows set at next[v], the cells of
