@@ -3,7 +3,7 @@
 // at ridge ends and the wall triangles on fan columns) is built on straight columns at
 // its planned height and tested exactly. The fan points of a failing cell fall back to
 // one column, and the layout is rebuilt. Cells that fold higher up are left to the march,
-// which stops their columns there (fan_precheck.cpp says why).
+// which lowers or stops their columns there (fan_precheck.cpp says why).
 //
 // Rounds: each rebuilt layout is checked again, and most of its fan elements are the
 // previous round's, on columns through the same points. The validity test is a pure
