@@ -8,7 +8,7 @@
 // Rounds: each rebuilt layout is checked again, and most of its fan elements are the
 // previous round's, on columns through the same points. The validity test is a pure
 // function of a cell's corners, so an element whose columns all run through bitwise the
-// same points as an element that passed every layer in the previous round (same kind,
+// same points as an element that passed in the previous round (same kind,
 // same split, the same columns in the same order) passes again without being rebuilt:
 // the failing set is the one a full check finds. Only a failing round is followed by
 // another, so only a failing round keeps its records for the next. Internal to
