@@ -3,35 +3,23 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "blayer/core/triangle_ids.h"
 #include "blayer/io/mesh_faces.h"
-#include "blayer/quality/cell_validity.h"
+#include "blayer/quality/quad_cap.h"
 
 namespace blayer {
 
 namespace {
 
-// The apex of the cap over quad q (nodes ordered with the normal out of the layers).
+// The apex of the cap over quad q (nodes ordered with the normal out of the layers). The
+// extruder accepted only hexahedra whose tops can be capped; a quad that cannot is an
+// internal failure.
 Vec3 cap_apex(const std::array<Vec3, 4>& q, const std::array<std::int64_t, 4>& ids) {
-  Vec3 centre{0, 0, 0}, normal{0, 0, 0};
-  double shortest = 1e300;
-  for (int i = 0; i < 4; ++i) {
-    const Vec3& a = q[i];
-    const Vec3& b = q[(i + 1) % 4];
-    centre = centre + 0.25 * a;
-    normal = normal + cross(a, b);  // Newell
-    shortest = std::min(shortest, norm(b - a));
-  }
-  normal = normalized(normal);
-  double d = 0.5 * shortest;
-  for (int attempt = 0; attempt < 5; ++attempt, d *= 0.5) {
-    const Vec3 apex = centre + d * normal;
-    const Vec3 corners[5] = {q[0], q[1], q[2], q[3], apex};
-    if (cell_is_valid(CellType::kPyramid, corners)) return apex;
-  }
+  if (const std::optional<Vec3> apex = quad_cap_apex(q)) return *apex;
   throw std::runtime_error("fill: no valid pyramid caps the envelope quad (" + std::to_string(ids[0]) + ", " +
                            std::to_string(ids[1]) + ", " + std::to_string(ids[2]) + ", " + std::to_string(ids[3]) +
                            ") of the layer mesh");
