@@ -6,7 +6,6 @@
 #include <cstring>
 
 #include "blayer/extruder/layer_cells.h"
-#include "blayer/quality/cell_validity.h"
 
 namespace blayer {
 
@@ -206,7 +205,7 @@ std::vector<int> FanPrecheck::failing_points(const TriSurface& wall, const Colum
           const std::int64_t id = cells[q].nodes[j];
           corners[j] = id < nv ? wall.points[id] : id < nv + nc ? base[id - nv] : up[id - nv - nc];
         }
-        if (!cell_is_valid(cells[q].type, corners)) {
+        if (!layer_cell_accepted(e, cells[q], corners)) {
           bad[x] = 1;
           passed[x] = -1;
           return;

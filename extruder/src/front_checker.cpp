@@ -10,7 +10,6 @@
 #include "blayer/core/assert.h"
 #include "blayer/core/edge_topology.h"
 #include "blayer/extruder/layer_cells.h"
-#include "blayer/quality/cell_validity.h"
 #include "blayer/quality/solver_acceptance.h"
 #include "parallel.h"
 
@@ -321,7 +320,7 @@ void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<V
     for (int i_c = 0; i_c < n_cells; ++i_c) {
       Vec3 corners[8];
       for (int i = 0; i < corner_count(cells[i_c].type); ++i) corners[i] = position(cells[i_c].nodes[i]);
-      if (!cell_is_valid(cells[i_c].type, corners)) invalid_[e] = 1;
+      if (!layer_cell_accepted(elements_[e], cells[i_c], corners)) invalid_[e] = 1;
     }
   });
   if (limits_.any()) {

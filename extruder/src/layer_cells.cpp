@@ -1,5 +1,8 @@
 #include "blayer/extruder/layer_cells.h"
 
+#include "blayer/quality/cell_validity.h"
+#include "blayer/quality/quad_cap.h"
+
 
 namespace blayer {
 
@@ -139,6 +142,14 @@ int element_layer_cells(const LayerElement& e, const std::array<std::int64_t, 4>
     return 1;
   }
   return 0;
+}
+
+bool layer_cell_accepted(const LayerElement& e, const LayerCell& cell, const Vec3* corners) {
+  if (!cell_is_valid(cell.type, corners)) return false;
+  if (e.kind != ElementKind::kStrip) return true;
+  if (cell.type == CellType::kHex) return quad_cap_apex({corners[4], corners[5], corners[6], corners[7]}).has_value();
+  if (cell.type == CellType::kWedge) return quad_cap_apex({corners[1], corners[4], corners[5], corners[2]}).has_value();
+  return true;
 }
 
 }  // namespace blayer

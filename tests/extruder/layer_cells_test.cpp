@@ -155,5 +155,47 @@ TEST(LayerCells, CellsInLayerOrderHaveTheQualityModulesPositiveScaledJacobian) {
   }
 }
 
+// A closure wedge of a fan strip on a CAD block (bench/make_perforated_block.py, layer
+// 7): its fan point y stopped near the wall, x grew on. The wedge is valid, but its face
+// (1, 4, 5, 2) from y's tops to x's new ones, which the envelope keeps, has a reflex
+// corner: no pyramid caps it, so a strip does not accept the cell. The same cell of a
+// wall triangle, whose envelope faces are triangles, is accepted.
+TEST(LayerCellAccepted, AStripCellWhoseEnvelopeQuadCannotBeCappedIsRefused) {
+  LayerCell wedge;
+  wedge.type = CellType::kWedge;
+  wedge.nodes = {0, 1, 2, 3, 4, 5, 0, 0};
+  const Vec3 corners[6] = {{0.73048793219317198, 1.6555480035868113, -0.018988924523485939},
+                           {0.75818113439906998, 1.6490612851212991, -0.001230185052746917},
+                           {0.72529128926883502, 1.6526382343654233, -0.024442098133800275},
+                           {0.72938957676825156, 1.6555232643450211, -0.019558879059479506},
+                           {0.75786607386101235, 1.6488794502448303, -0.00018987949182620238},
+                           {0.72416738419325966, 1.652698575226996, -0.025256848962415108}};
+  ASSERT_TRUE(cell_is_valid(CellType::kWedge, corners));
+  LayerElement strip;
+  strip.kind = ElementKind::kStrip;
+  EXPECT_FALSE(layer_cell_accepted(strip, wedge, corners));
+  LayerElement triangle;
+  triangle.kind = ElementKind::kTriangle;
+  EXPECT_TRUE(layer_cell_accepted(triangle, wedge, corners));
+}
+
+// A strip's hexahedron with a convex top is accepted. With a plane top that has a reflex
+// corner the exact test already refuses it (a split of the top folds against a bottom
+// node): the cap matters for tops that are not plane, as the wedge's face above.
+TEST(LayerCellAccepted, AStripHexIsAcceptedWhenValidAndItsTopCanBeCapped) {
+  LayerCell hex;
+  hex.type = CellType::kHex;
+  hex.nodes = {0, 1, 2, 3, 4, 5, 6, 7};
+  Vec3 corners[8] = {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}, {0, 1, 0}, {0, 0, 1}, {4, 0, 1}, {4, 1, 1}, {0, 1, 1}};
+  LayerElement strip;
+  strip.kind = ElementKind::kStrip;
+  EXPECT_TRUE(layer_cell_accepted(strip, hex, corners));
+  corners[6] = {4, 0.5, 1};  // top (0,0)(4,0)(4,0.5)(0,1): convex, still capped
+  EXPECT_TRUE(layer_cell_accepted(strip, hex, corners));
+  corners[4] = {2, 0.5, 1};  // top corner 4 inside the triangle of the others: reflex
+  EXPECT_FALSE(cell_is_valid(CellType::kHex, corners));
+  EXPECT_FALSE(layer_cell_accepted(strip, hex, corners));
+}
+
 }  // namespace
 }  // namespace blayer

@@ -63,6 +63,15 @@ bool layer_cell(const std::array<std::int64_t, 3>& bottom, const std::array<std:
 int element_layer_cells(const LayerElement& e, const std::array<std::int64_t, 4>& bottom,
                         const std::array<std::int64_t, 4>& top, const std::array<bool, 4>& grows, LayerCell* out);
 
+// Whether a cell of element e's layer is accepted: exactly valid (cell_validity.h), and,
+// for a fan strip's cell, with the quad face that can end on the layers' envelope (a
+// hexahedron's top, a wedge's face (1, 4, 5, 2): the fan wedge's top on the wall, or the
+// face of a closure wedge from the stopped point's tops to the new ones) able to take
+// the pyramid that caps it for the tetrahedral fill (quality/quad_cap.h). Such a face
+// of a twisted thin strip can be valid in its cell and yet have a reflex corner.
+// corners: the cell's node positions in its order.
+bool layer_cell_accepted(const LayerElement& e, const LayerCell& cell, const Vec3* corners);
+
 // The same, with the ids and growth read per column c of the element: bottom_id(c),
 // top_id(c), grows(c).
 template <class BottomId, class TopId, class Grows>
