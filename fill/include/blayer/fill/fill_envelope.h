@@ -18,9 +18,9 @@
 //        arrays 0 on the apexes; cell arrays 0, "layer" -1 on the pyramids).
 //   Without fans the surface is the envelope itself (same triangles, same points) and
 //   nothing is appended.
-// Apex: the quad's centroid moved along its outward (Newell) normal by half its
-// shortest edge, halved until the pyramid passes the exact validity test (at most four
-// times); a quad for which none passes throws std::runtime_error naming its nodes.
+// Apex: quality/quad_cap.h's, on the quad's outward (Newell) normal through its centre.
+// The extruder accepts a fan strip's cell only if that quad can be capped, so a quad for
+// which no apex passes is an internal failure: std::runtime_error naming its nodes.
 // Cost: O(#cells) for the layer mesh's faces (io/mesh_faces.h). (Every layer mesh has
 // quad faces, its wedges' sides, so no cheaper test tells a fanned envelope apart.)
 #pragma once
