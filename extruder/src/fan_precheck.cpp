@@ -14,11 +14,11 @@ namespace {
 // The layers the precheck builds: the first only. A fan cell that folds higher up (a
 // short ridge edge under tall layers) is left to the march, which lowers or stops the
 // columns of a failing cell there as anywhere else (a fan's columns stop together).
-// Falling the point back instead made each
-// neighbour on the ridge a ridge end whose split cells folded in the next round, a
-// cascade that took every fan of a perforated CAD block (bench/make_perforated_block.py).
-// A fan that fails its first layer grows nothing and would fall back after a marching
-// attempt anyway: found here, it costs no rerun.
+// Falling the point back instead made each neighbour on the ridge a ridge end whose
+// split cells folded in the next round, a cascade that took every fan of a perforated
+// CAD block (bench/make_perforated_block.py). A fan that fails its first layer grows
+// nothing and would fall back after a marching attempt anyway: found here, it costs no
+// rerun.
 constexpr int kPrecheckedLayers = 1;
 
 std::uint64_t bits(double x) {

@@ -3,7 +3,6 @@
 #include "blayer/quality/cell_validity.h"
 #include "blayer/quality/quad_cap.h"
 
-
 namespace blayer {
 
 bool layer_cell(const std::array<std::int64_t, 3>& bottom, const std::array<std::int64_t, 3>& top,

@@ -16,8 +16,8 @@ namespace blayer {
 namespace {
 
 // The apex of the cap over quad q (nodes ordered with the normal out of the layers). The
-// extruder accepted only hexahedra whose tops can be capped; a quad that cannot is an
-// internal failure.
+// extruder accepts a fan strip's cell only if its quad that can end on the envelope can
+// be capped (layer_cells.h); a quad that cannot is an internal failure.
 Vec3 cap_apex(const std::array<Vec3, 4>& q, const std::array<std::int64_t, 4>& ids) {
   if (const std::optional<Vec3> apex = quad_cap_apex(q)) return *apex;
   throw std::runtime_error("fill: no valid pyramid caps the envelope quad (" + std::to_string(ids[0]) + ", " +

@@ -1,8 +1,9 @@
 // The pyramid that caps a quad face of the layer mesh for the tetrahedral fill
 // (fill_envelope.h): TetGen takes triangles only, so each quad on the layers' envelope
 // gets a pyramid whose four side triangles the tetrahedra meet. The extruder accepts a
-// hexahedron only when its top face can be capped (front_checker.h), so that every
-// quad it leaves on the envelope can be; both call the same function on the same points.
+// fan strip's cell only when its quad that can end on the envelope can be capped
+// (extruder/layer_cells.h), so that every quad it leaves there can be; both call this
+// function on the same points.
 #pragma once
 
 #include <array>
