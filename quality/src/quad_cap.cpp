@@ -9,10 +9,11 @@ namespace blayer {
 namespace {
 
 // Heights of the apex over the quad's centre, in multiples of half its shortest edge,
-// in the order tried: that height first; then higher, for a twisted quad whose halves
-// tilt apart (on a thin fan strip's top, 0.24e-3 wide at one end and 2.1e-3 at the
-// other, half the shortest edge was too low and the shortest edge enough); then lower.
-constexpr double kCapHeights[] = {1, 2, 4, 8, 16, 32, 0.5, 0.25, 0.125, 0.0625};
+// in the order tried: that height, then lower (every quad capped so far gets the apex
+// it always got); then higher, for a twisted quad whose halves tilt apart (on a thin
+// fan strip's top, 0.24e-3 wide at one end and 2.1e-3 at the other, half the shortest
+// edge and lower were too low, the shortest edge enough).
+constexpr double kCapHeights[] = {1, 0.5, 0.25, 0.125, 0.0625, 2, 4, 8, 16, 32};
 
 }  // namespace
 

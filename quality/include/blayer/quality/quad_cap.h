@@ -15,10 +15,10 @@ namespace blayer {
 
 // The apex of a valid pyramid (cell_validity.h, exact) on quad q, whose right-hand
 // normal points away from the cell below it: on the quad's Newell normal through its
-// centre, at the first height of a fixed list (half the shortest edge first, never
-// above the longest edge) that gives a valid pyramid; nullopt when none does (a quad
-// with a reflex corner, or one folded along a diagonal). The result does not depend on
-// which corner q starts at.
+// centre, at the first height of a fixed list (half the shortest edge, then lower, then
+// higher, never above the longest edge) that gives a valid pyramid; nullopt when none
+// does (a quad with a reflex corner, or one folded along a diagonal). The result does
+// not depend on which corner q starts at.
 std::optional<Vec3> quad_cap_apex(const std::array<Vec3, 4>& q);
 
 }  // namespace blayer
