@@ -11,16 +11,6 @@ namespace blayer {
 
 namespace {
 
-// The layers the precheck builds: the first only. A fan cell that folds higher up (a
-// short ridge edge under tall layers) is left to the march, which lowers or stops the
-// columns of a failing cell there as anywhere else (a fan's columns stop together).
-// Falling the point back instead made each neighbour on the ridge a ridge end whose
-// split cells folded in the next round, a cascade that took every fan of a perforated
-// CAD block (bench/make_perforated_block.py). A fan that fails its first layer grows
-// nothing and would fall back after a marching attempt anyway: found here, it costs no
-// rerun.
-constexpr int kPrecheckedLayers = 1;
-
 std::uint64_t bits(double x) {
   std::uint64_t b;
   std::memcpy(&b, &x, sizeof b);
@@ -70,7 +60,7 @@ FanPrecheck::Round FanPrecheck::round_of(const TriSurface& wall, const ColumnLay
   Round r;
   r.run_start.assign(static_cast<std::size_t>(nc) + 1, 0);
   for (int c = 0; c < nc; ++c) {
-    grown[c] = dirs.ok[c] ? std::min({plan.planned_layers[c], plan.n_layers, kPrecheckedLayers}) : 0;
+    grown[c] = dirs.ok[c] && std::min(plan.planned_layers[c], plan.n_layers) > 0 ? 1 : 0;  // the first layer
     r.run_start[c + 1] = r.run_start[c] + (needed[c] ? 2 + 3 * static_cast<std::size_t>(grown[c]) : 0);
   }
   r.runs.resize(r.run_start[nc]);
@@ -164,67 +154,62 @@ std::vector<int> FanPrecheck::failing_points(const TriSurface& wall, const Colum
   // A fan column without a usable direction stops on the wall, and its fan with it.
   for (int c = 0; c < nc; ++c)
     if (layout.in_fan[c] && !dirs.ok[c]) failed[layout.wall_point[c]] = 1;
-  auto failing = [&] {
-    std::vector<int> out;
-    for (int w = 0; w < nv; ++w)
-      if (failed[w]) out.push_back(w);
-    return out;
-  };
-  // Column tops: ids nv + c (the layer's base) and nv + nc + c (one layer up).
-  std::vector<Vec3> base(nc), up(nc);
-  for (int c = 0; c < nc; ++c) base[c] = wall.points[layout.wall_point[c]];
-  for (int k = 0; k < std::min(plan.n_layers, kPrecheckedLayers); ++k) {
-    std::vector<char> grows(nc, 0);
-    for (int c = 0; c < nc; ++c) {
-      if (current.grown(c) <= k) continue;
-      up[c] = current.top(c, k);
-      grows[c] = 1;
+  // The first layer only. A fan cell that folds higher up (a short ridge edge under tall
+  // layers) is left to the march, which lowers or stops the columns of a failing cell
+  // there as anywhere else (a fan's columns stop together). Falling the point back
+  // instead made each neighbour on the ridge a ridge end whose split cells folded in the
+  // next round, a cascade that took every fan of a perforated CAD block
+  // (bench/make_perforated_block.py). A fan that fails its first layer grows nothing and
+  // would fall back after a marching attempt anyway: found here, it costs no rerun.
+  // Column tops: ids nv + c.
+  std::vector<Vec3> up(nc);
+  std::vector<char> grows(nc, 0);
+  for (int c = 0; c < nc; ++c) {
+    if (current.grown(c) == 0) continue;
+    up[c] = current.top(c, 0);
+    grows[c] = 1;
+  }
+  // The elements are checked in parallel; the verdicts are merged in element order, so
+  // the failed set does not depend on the scheduling. An element whose fan points all
+  // failed already (no direction) can add nothing and is not recorded as passed.
+  std::vector<char> bad(checked.size(), 0);
+  tbb::parallel_for(std::size_t{0}, checked.size(), [&](std::size_t x) {
+    if (passed[x] != 0) return;
+    const LayerElement& e = layout.elements[checked[x]];
+    bool news = false;
+    for (int j = 0; j < e.n_columns() && !news; ++j)
+      news = layout.in_fan[e.column[j]] && !failed[layout.wall_point[e.column[j]]];
+    if (!news) {
+      passed[x] = -1;
+      return;
     }
-    // The elements are checked in parallel; the verdicts are merged in element order,
-    // so the failed set does not depend on the scheduling. An element whose fan points
-    // all failed already can add nothing (and is not recorded as passed).
-    std::vector<char> bad(checked.size(), 0);
-    tbb::parallel_for(std::size_t{0}, checked.size(), [&](std::size_t x) {
-      if (passed[x] != 0) return;
-      const LayerElement& e = layout.elements[checked[x]];
-      bool news = false;
-      for (int j = 0; j < e.n_columns() && !news; ++j)
-        news = layout.in_fan[e.column[j]] && !failed[layout.wall_point[e.column[j]]];
-      if (!news) {
+    LayerCell cells[2];
+    const int n_cells = element_layer_cells(
+        e, [&](int c) -> std::int64_t { return layout.wall_point[c]; },
+        [&](int c) -> std::int64_t { return static_cast<std::int64_t>(nv) + c; },
+        [&](int c) { return grows[c] != 0; }, cells);
+    for (int q = 0; q < n_cells; ++q) {
+      Vec3 corners[8];
+      for (int j = 0; j < corner_count(cells[q].type); ++j) {
+        const std::int64_t id = cells[q].nodes[j];
+        corners[j] = id < nv ? wall.points[id] : up[id - nv];
+      }
+      if (!layer_cell_accepted(e, cells[q], corners)) {
+        bad[x] = 1;
         passed[x] = -1;
         return;
       }
-      LayerCell cells[2];
-      const int n_cells = element_layer_cells(
-          e, [&](int c) -> std::int64_t { return k == 0 ? layout.wall_point[c] : nv + c; },
-          [&](int c) -> std::int64_t { return static_cast<std::int64_t>(nv) + nc + c; },
-          [&](int c) { return grows[c] != 0; }, cells);
-      for (int q = 0; q < n_cells; ++q) {
-        Vec3 corners[8];
-        for (int j = 0; j < corner_count(cells[q].type); ++j) {
-          const std::int64_t id = cells[q].nodes[j];
-          corners[j] = id < nv ? wall.points[id] : id < nv + nc ? base[id - nv] : up[id - nv - nc];
-        }
-        if (!layer_cell_accepted(e, cells[q], corners)) {
-          bad[x] = 1;
-          passed[x] = -1;
-          return;
-        }
-      }
-    });
-    bool any_failed = false;
-    for (std::size_t x = 0; x < checked.size(); ++x) {
-      if (!bad[x]) continue;
-      any_failed = true;
-      const LayerElement& e = layout.elements[checked[x]];
-      for (int j = 0; j < e.n_columns(); ++j)
-        if (layout.in_fan[e.column[j]]) failed[layout.wall_point[e.column[j]]] = 1;
     }
-    if (any_failed && last_round) return failing();
-    for (int c = 0; c < nc; ++c)
-      if (grows[c]) base[c] = up[c];
+  });
+  for (std::size_t x = 0; x < checked.size(); ++x) {
+    if (!bad[x]) continue;
+    const LayerElement& e = layout.elements[checked[x]];
+    for (int j = 0; j < e.n_columns(); ++j)
+      if (layout.in_fan[e.column[j]]) failed[layout.wall_point[e.column[j]]] = 1;
   }
-  std::vector<int> out = failing();
+  std::vector<int> out;
+  for (int w = 0; w < nv; ++w)
+    if (failed[w]) out.push_back(w);
   // Only a failing round is followed by another (a passing one marches, and release()
   // drops the records), so a passing round keeps none.
   if (out.empty() || last_round) return out;
