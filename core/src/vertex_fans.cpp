@@ -15,15 +15,31 @@ struct Wedge {
 
 }  // namespace
 
+void FanTable::append(const std::vector<int>& ring, const std::vector<int>& triangles, bool closed) {
+  ring_.insert(ring_.end(), ring.begin(), ring.end());
+  triangles_.insert(triangles_.end(), triangles.begin(), triangles.end());
+  ring_start_.push_back(static_cast<int>(ring_.size()));
+  triangle_start_.push_back(static_cast<int>(triangles_.size()));
+  closed_.push_back(closed);
+}
+
+void FanTable::reserve(std::size_t points, std::size_t ids) {
+  ring_start_.reserve(points + 1);
+  triangle_start_.reserve(points + 1);
+  closed_.reserve(points);
+  ring_.reserve(ids + points);  // an open fan's ring has one id more than its triangles
+  triangles_.reserve(ids);
+}
+
 VertexFans build_vertex_fans(const TriSurface& s) {
   const int nv = static_cast<int>(s.points.size());
   VertexFans out;
-  out.fans.resize(nv);
 
   // One wedge per corner, grouped by vertex as in the vertex->triangle table. A
   // triangle listed twice for v (it repeats v) gives its two corners in order.
   const CsrTable vtri = vertex_triangles(s);
   const std::vector<int>& start = vtri.start;
+  out.fans.reserve(nv, vtri.items.size());
   std::vector<Wedge> wedges(vtri.items.size());
   for (int v = 0; v < nv; ++v) {
     int k = -1;
@@ -37,9 +53,14 @@ VertexFans build_vertex_fans(const TriSurface& s) {
   }
 
   std::vector<char> used;
+  std::vector<int> ring, triangles;
+  const std::vector<int> none;
   for (int v = 0; v < nv; ++v) {
     const int b = start[v], e = start[v + 1], n = e - b;
-    if (n == 0) continue;
+    if (n == 0) {
+      out.fans.append(none, none, false);
+      continue;
+    }
     // Valences are small (typically < 20): quadratic search beats hashing here.
     auto find_from = [&](int from) {
       int hit = -1;
@@ -62,11 +83,9 @@ VertexFans build_vertex_fans(const TriSurface& s) {
       }
     }
     bool ok = n_starts <= 1;
-    // Sized once: growing the ring and triangle lists by push_back cost more than
-    // building the fans themselves.
-    VertexFan fan;
-    fan.ring.reserve(n + 1);
-    fan.triangles.reserve(n);
+    bool closed = false;
+    ring.clear();
+    triangles.clear();
     int cur = first;
     used.assign(n, 0);
     for (int step = 0; ok && step < n; ++step) {
@@ -75,23 +94,24 @@ VertexFans build_vertex_fans(const TriSurface& s) {
         break;
       }
       used[cur - b] = 1;
-      fan.ring.push_back(wedges[cur].from);
-      fan.triangles.push_back(wedges[cur].tri);
+      ring.push_back(wedges[cur].from);
+      triangles.push_back(wedges[cur].tri);
       const int next_from = wedges[cur].to;
       if (step == n - 1) {
-        fan.closed = (n_starts == 0) && next_from == wedges[first].from;
-        if (!fan.closed) {
+        closed = (n_starts == 0) && next_from == wedges[first].from;
+        if (!closed) {
           if (n_starts == 0) ok = false;
-          fan.ring.push_back(next_from);
+          ring.push_back(next_from);
         }
         break;
       }
       cur = find_from(next_from);
       if (cur == -2) ok = false;
     }
-    if (ok && static_cast<int>(fan.triangles.size()) == n) {
-      out.fans[v] = std::move(fan);
+    if (ok && static_cast<int>(triangles.size()) == n) {
+      out.fans.append(ring, triangles, closed);
     } else {
+      out.fans.append(none, none, false);
       out.non_manifold.push_back(v);
     }
   }
