@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "blayer/core/cyclic_index.h"
 #include "blayer/core/errors.h"
@@ -251,11 +253,11 @@ MetricSummary summarize(const char* name, std::vector<double> v) {
   return s;
 }
 
-// Counts and metric summaries over the given cells (all cells when `cells` is null).
-CheckCounts count_cells(const VolumeMesh& mesh, const MeshCheckReport& r, const std::vector<std::size_t>* cells) {
+// Counts and metric summaries over the n given cells (all cells when `cells` is null).
+template <class Id>
+CheckCounts count_cells(const VolumeMesh& mesh, const MeshCheckReport& r, const Id* cells, std::size_t n) {
   CheckCounts cc;
-  const std::size_t n = cells ? cells->size() : mesh.n_cells();
-  auto id = [&](std::size_t i) { return cells ? (*cells)[i] : i; };
+  auto id = [&](std::size_t i) { return cells ? static_cast<std::size_t>(cells[i]) : i; };
   cc.cells = n;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t c = id(i);
@@ -272,6 +274,25 @@ CheckCounts count_cells(const VolumeMesh& mesh, const MeshCheckReport& r, const 
     cc.metrics[k] = summarize(kCheckMetricNames[k], std::move(v));
   });
   return cc;
+}
+
+// The counts of each value of the `layer` array, ascending. The cells are grouped by
+// layer in one list of exact size (a counting sort, on 32-bit ids where they fit): a
+// list per layer grown cell by cell held up to twice the ids, in the check's peak.
+template <class Id>
+void count_layers(const VolumeMesh& mesh, const DataArray& layer, MeshCheckReport* r) {
+  const std::size_t n = mesh.n_cells();
+  std::map<long, std::size_t> start;  // cells per layer, then where each layer's start
+  for (std::size_t c = 0; c < n; ++c)
+    if (std::isfinite(layer.values[c])) ++start[std::lround(layer.values[c])];
+  std::size_t total = 0;
+  for (auto& [value, count] : start) total += std::exchange(count, total);
+  std::vector<Id> grouped(total);
+  std::map<long, std::size_t> end = start;
+  for (std::size_t c = 0; c < n; ++c)
+    if (std::isfinite(layer.values[c])) grouped[end[std::lround(layer.values[c])]++] = static_cast<Id>(c);
+  for (const auto& [value, first] : start)
+    r->layers.push_back({value, count_cells(mesh, *r, grouped.data() + first, end[value] - first)});
 }
 
 }  // namespace
@@ -354,14 +375,14 @@ MeshCheckReport check_volume_mesh(const VolumeMesh& mesh) {
     }
   });
 
-  r.totals = count_cells(mesh, r, nullptr);
+  r.totals = count_cells<std::size_t>(mesh, r, nullptr, n);
 
   const DataArray* layer = mesh.find_cell_array("layer");
   if (layer && layer->n_components == 1 && layer->values.size() == n) {
-    std::map<long, std::vector<std::size_t>> by_layer;
-    for (std::size_t c = 0; c < n; ++c)
-      if (std::isfinite(layer->values[c])) by_layer[std::lround(layer->values[c])].push_back(c);
-    for (const auto& [value, cells] : by_layer) r.layers.push_back({value, count_cells(mesh, r, &cells)});
+    if (n <= std::numeric_limits<std::uint32_t>::max())
+      count_layers<std::uint32_t>(mesh, *layer, &r);
+    else
+      count_layers<std::size_t>(mesh, *layer, &r);
   }
   return r;
 }

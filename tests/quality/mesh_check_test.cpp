@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -52,6 +53,34 @@ TEST(MeshCheck, ValidPrismColumnPassesWithGrowthRatiosAndPerLayerSummaries) {
   EXPECT_EQ(r.layers[1].layer, 1);
   EXPECT_EQ(r.layers[1].counts.cells, 1u);
   EXPECT_NEAR(r.min_scaled_jacobian(), std::sqrt(0.5) * 2.0 / std::sqrt(3.0), kMetricTol);
+}
+
+TEST(MeshCheck, PerLayerSummariesGroupCellsByLayerValueInAnyOrderAndSkipNonFiniteOnes) {
+  VolumeMesh m = prism_column({0.0, 0.1, 0.25, 0.3, 0.7, 0.75});
+  const std::vector<double> values{2, 0, 2, std::nan(""), 1};
+  m.cell_data = {DataArray{"layer", 1, values}};
+  const MeshCheckReport r = check_volume_mesh(m);
+  ASSERT_EQ(r.layers.size(), 3u);
+  // Oracle: each layer's cells picked by scanning, and their metrics' extremes.
+  for (const LayerCheck& l : r.layers) {
+    std::size_t cells = 0;
+    double min_aspect = INFINITY, max_aspect = -INFINITY;
+    for (std::size_t c = 0; c < values.size(); ++c)
+      if (values[c] == static_cast<double>(l.layer)) {
+        ++cells;
+        min_aspect = std::min(min_aspect, r.metrics[2][c]);
+        max_aspect = std::max(max_aspect, r.metrics[2][c]);
+      }
+    EXPECT_EQ(l.counts.cells, cells) << "layer " << l.layer;
+    EXPECT_EQ(l.counts.by_type[check_type_index(CellType::kWedge)], cells) << "layer " << l.layer;
+    EXPECT_EQ(l.counts.metrics[2].min, min_aspect) << "layer " << l.layer;
+    EXPECT_EQ(l.counts.metrics[2].max, max_aspect) << "layer " << l.layer;
+  }
+  EXPECT_EQ(r.layers[0].layer, 0);
+  EXPECT_EQ(r.layers[1].layer, 1);
+  EXPECT_EQ(r.layers[2].layer, 2);
+  EXPECT_EQ(r.layers[2].counts.cells, 2u);
+  EXPECT_LT(r.layers[2].counts.metrics[2].min, r.layers[2].counts.metrics[2].max);  // two different cells
 }
 
 TEST(MeshCheck, InvertedCellIsCountedAndExtractedWithItsArrays) {

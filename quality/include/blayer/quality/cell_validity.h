@@ -51,6 +51,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 
 #include "blayer/core/vec3.h"
 #include "blayer/core/volume_mesh.h"
@@ -58,7 +59,8 @@
 namespace blayer {
 
 // The values are written as the int cell array `validity`: part of the output contract.
-enum class Validity { kValid = 0, kFlat = 1, kInverted = 2, kTwisted = 3 };
+// One byte each: a whole-mesh check keeps one per cell beside its metrics.
+enum class Validity : std::uint8_t { kValid = 0, kFlat = 1, kInverted = 2, kTwisted = 3 };
 
 // corners: corner_count(type) points in VTK order.
 Validity cell_validity(CellType type, const Vec3* corners);
