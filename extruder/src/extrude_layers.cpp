@@ -168,7 +168,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
   if (normal_memo) normal_memo->drop_cheap();  // likewise, but for the costly fans
   FrontChecker checker(wall, shared_layout, topo, params, wall_tree->get());
   ColumnState columns = ColumnState::on_wall(start.points, topo.used, layout.wall_point);
-  LayerAssembler assembler(wall, layout, dirs);
+  LayerAssembler assembler(wall, shared_layout, dirs);
   assembler.reserve_layers(rep.growth.layers);
   TriSurface front;
   front.triangles = start.triangles;

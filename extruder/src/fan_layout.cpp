@@ -356,7 +356,20 @@ class LayoutBuilder {
     }
   }
 
-  ColumnLayout take() { return std::move(out_); }
+  // The arrays grew by doubling; a layout lives through the whole march, where up to
+  // half of each array would be idle capacity in the run's peak memory.
+  ColumnLayout take() {
+    out_.front.points.shrink_to_fit();
+    out_.front.triangles.shrink_to_fit();
+    out_.wall_point.shrink_to_fit();
+    out_.wall_face.shrink_to_fit();
+    out_.elements.shrink_to_fit();
+    out_.element_of_triangle.shrink_to_fit();
+    out_.direction.shrink_to_fit();
+    out_.in_fan.shrink_to_fit();
+    out_.faceless.shrink_to_fit();
+    return std::move(out_);
+  }
 
  private:
   int add_column(int v, const Vec3& d, bool fan, bool faceless) {

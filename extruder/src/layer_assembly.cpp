@@ -1,26 +1,39 @@
 #include "blayer/extruder/layer_assembly.h"
 
 #include <algorithm>
+#include <limits>
+#include <memory>
 
+#include "blayer/extruder/growth_law.h"
 #include "blayer/extruder/layer_cells.h"
 
 namespace blayer {
 
+static_assert(kMaxLayers <= std::numeric_limits<std::uint16_t>::max(), "a cell's layer is kept in two bytes");
+
 LayerAssembler::LayerAssembler(const TriSurface& wall, const StepDirections& wall_directions)
-    : LayerAssembler(wall, single_column_layout(wall), wall_directions) {}
+    : LayerAssembler(wall, std::make_shared<const ColumnLayout>(single_column_layout(wall)), wall_directions) {}
 
 LayerAssembler::LayerAssembler(const TriSurface& wall, const ColumnLayout& layout,
                                const StepDirections& wall_directions)
-    : elements_(layout.elements), in_fan_(layout.in_fan), n_wall_elements_(wall.triangles.size()) {
+    : LayerAssembler(wall, std::make_shared<const ColumnLayout>(layout), wall_directions) {}
+
+LayerAssembler::LayerAssembler(const TriSurface& wall, std::shared_ptr<const ColumnLayout> layout_ptr,
+                               const StepDirections& wall_directions)
+    : layout_(std::move(layout_ptr)),
+      elements_(layout_->elements),
+      in_fan_(layout_->in_fan),
+      n_wall_elements_(wall.triangles.size()) {
+  const ColumnLayout& layout = *layout_;
   const int nv = static_cast<int>(wall.points.size());
   mesh_.points = wall.points;
-  point_normal_.assign(nv, Vec3{0.0, 0.0, 0.0});
+  point_normal_.assign(3 * static_cast<std::size_t>(nv), 0.0f);
   point_column_.assign(nv, -1);
   for (int c = 0; c < layout.n_columns(); ++c) {
     const int w = layout.wall_point[c];
     if (point_column_[w] >= 0) continue;
     point_column_[w] = c;
-    if (wall_directions.ok[c]) point_normal_[w] = wall_directions.n[c];
+    if (wall_directions.ok[c]) set_point_normal(w, wall_directions.n[c]);
   }
 }
 
@@ -37,12 +50,16 @@ void LayerAssembler::reserve_layers(int n_layers) {
   cells *= layers;
   const std::size_t points = mesh_.points.size() + layers * in_fan_.size();
   mesh_.points.reserve(points);
-  point_normal_.reserve(points);
+  point_normal_.reserve(3 * points);
   point_column_.reserve(points);
   mesh_.connectivity.reserve(layers * ids);
   mesh_.offsets.reserve(cells + 1);
   mesh_.cell_types.reserve(cells);
   cell_layer_.reserve(cells);
+}
+
+void LayerAssembler::set_point_normal(std::int64_t p, const Vec3& n) {
+  for (int i = 0; i < 3; ++i) point_normal_[3 * static_cast<std::size_t>(p) + i] = static_cast<float>(n[i]);
 }
 
 void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const std::vector<Vec3>& next,
@@ -55,8 +72,8 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
     new_top[v] = static_cast<std::int64_t>(mesh_.points.size());
     mesh_.points.push_back(next[v]);
     // A fan point's wall point shows its first column's direction.
-    if (columns->layers[v] > 0 || point_column_[columns->top_id[v]] == v) point_normal_[columns->top_id[v]] = d.n[v];
-    point_normal_.push_back(d.n[v]);
+    if (columns->layers[v] > 0 || point_column_[columns->top_id[v]] == v) set_point_normal(columns->top_id[v], d.n[v]);
+    for (int i = 0; i < 3; ++i) point_normal_.push_back(static_cast<float>(d.n[v][i]));
     point_column_.push_back(v);
     min_visibility_ = std::min(min_visibility_, d.visibility[v]);
     ++n_grown;
@@ -71,7 +88,7 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
     for (int i = 0; i < n_cells; ++i) {
       mesh_.add_cell(cells[i].type, cells[i].nodes.data());
       if (i_e >= n_wall_elements_) ++fan_cells_;
-      cell_layer_.push_back(k);
+      cell_layer_.push_back(static_cast<std::uint16_t>(k));
     }
   }
   for (int v = 0; v < nv; ++v) {
@@ -86,31 +103,30 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
 
 void LayerAssembler::attach_arrays(const ColumnState& columns, VolumeMesh* mesh) {
   const std::size_t n = point_column_.size();
-  DataArray normal{"normal", 3, ArrayValues(ValueType::kFloat64, 3 * n)};
   DataArray height{"column_height", 1, ArrayValues(ValueType::kFloat64, n)};
   DataArray reason{"stop_reason", 1, ArrayValues(ValueType::kInt32, n)};
   DataArray layers{"layers", 1, ArrayValues(ValueType::kInt32, n)};
   DataArray fan{"fan_column", 1, ArrayValues(ValueType::kInt32, n)};
-  double* normal_out = normal.values.as<double>().data();
   double* height_out = height.values.as<double>().data();
   std::int32_t* reason_out = reason.values.as<std::int32_t>().data();
   std::int32_t* layers_out = layers.values.as<std::int32_t>().data();
   std::int32_t* fan_out = fan.values.as<std::int32_t>().data();
   for (std::size_t p = 0; p < n; ++p) {
     const int v = point_column_[p];
-    for (int i = 0; i < 3; ++i) normal_out[3 * p + i] = point_normal_[p][i];
     if (v < 0) continue;  // a wall point no triangle uses
     height_out[p] = columns.path[v];
     reason_out[p] = static_cast<std::int32_t>(columns.reason[v]);
     layers_out[p] = columns.layers[v];
     fan_out[p] = in_fan_[v];
   }
-  // Freed before the cell array is built. Assigning {} would keep their capacity, and a
-  // brace list would copy every array: both held the peak memory of a run.
-  std::vector<Vec3>().swap(point_normal_);
+  // Moved, not copied: a brace list of the arrays would copy every one, which held the
+  // peak memory of a run.
+  DataArray normal{"normal", 3, ArrayValues(std::move(point_normal_))};
+  point_normal_ = {};
   for (DataArray* a : {&normal, &height, &reason, &layers, &fan}) mesh->point_data.push_back(std::move(*a));
-  mesh->cell_data.push_back(DataArray{"layer", 1, ArrayValues(std::move(cell_layer_))});
+  std::vector<std::int32_t> cell_layer(cell_layer_.begin(), cell_layer_.end());
   cell_layer_ = {};
+  mesh->cell_data.push_back(DataArray{"layer", 1, ArrayValues(std::move(cell_layer))});
 }
 
 }  // namespace blayer

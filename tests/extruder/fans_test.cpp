@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <memory>
 #include <set>
 
 #include "blayer/core/edge_topology.h"
@@ -622,6 +623,48 @@ TEST(FanAssembly, ReservedLayersHoldTheSplitCellsOfRidgeEnds) {
   EXPECT_EQ(m.connectivity.capacity(), reserved.connectivity.capacity());
   EXPECT_EQ(m.offsets.capacity(), reserved.offsets.capacity());
   EXPECT_EQ(m.cell_types.capacity(), reserved.cell_types.capacity());
+}
+
+// A layout lives through the whole march: its arrays hold no idle capacity from
+// growing by doubling.
+TEST(FanLayout, BuiltLayoutsArraysHoldNoIdleCapacity) {
+  const ColumnLayout l = layout_of(wedge_prism(15.0, 4.0, 2.0, 4), 120.0, 40.0);
+  ASSERT_TRUE(l.has_fans());
+  EXPECT_EQ(l.front.points.capacity(), l.front.points.size());
+  EXPECT_EQ(l.front.triangles.capacity(), l.front.triangles.size());
+  EXPECT_EQ(l.wall_point.capacity(), l.wall_point.size());
+  EXPECT_EQ(l.wall_face.capacity(), l.wall_face.size());
+  EXPECT_EQ(l.elements.capacity(), l.elements.size());
+  EXPECT_EQ(l.element_of_triangle.capacity(), l.element_of_triangle.size());
+  EXPECT_EQ(l.direction.capacity(), l.direction.size());
+  EXPECT_EQ(l.in_fan.capacity(), l.in_fan.size());
+  EXPECT_EQ(l.faceless.capacity(), l.faceless.size());
+}
+
+// The march's assembler reads the layout the checker shares rather than a copy of its
+// elements; each point's direction is written in single precision.
+TEST(FanAssembly, AssemblerSharesTheLayoutAndWritesSinglePrecisionDirections) {
+  const TriSurface w = wedge_prism(15.0, 4.0, 2.0, 4);
+  const auto l = std::make_shared<const ColumnLayout>(layout_of(w, 120.0, 40.0));
+  const int nc = l->n_columns();
+  const StepDirections d{{}, l->direction, std::vector<double>(nc, 1.0), std::vector<char>(nc, 1)};
+  const WallTopology topo = build_column_topology(*l);
+  ColumnState columns = ColumnState::on_wall(l->front.points, topo.used, l->wall_point);
+  LayerAssembler a(w, l, d);
+  EXPECT_EQ(l.use_count(), 2);
+  std::vector<Vec3> next(nc);
+  for (int c = 0; c < nc; ++c) next[c] = columns.top[c] + 0.01 * d.n[c];
+  a.commit_layer(0, std::vector<char>(nc, 1), next, d, &columns);
+  VolumeMesh m = a.take_mesh();
+  a.attach_arrays(columns, &m);
+  const DataArray* normal = m.find_point_array("normal");
+  ASSERT_NE(normal, nullptr);
+  ASSERT_EQ(normal->values.type(), ValueType::kFloat32);
+  const std::vector<int>& column_of = a.point_column();
+  ASSERT_EQ(normal->values.size(), 3 * m.points.size());
+  for (std::size_t p = w.points.size(); p < m.points.size(); ++p)
+    for (int i = 0; i < 3; ++i)
+      EXPECT_EQ(normal->values[3 * p + i], static_cast<double>(static_cast<float>(d.n[column_of[p]][i]))) << p;
 }
 
 TEST(FanExtrusion, AnOpenBoxsFansEndAtItsRim) {

@@ -1,7 +1,8 @@
 // A mesh's named point or cell array: n_tuples x n_components values, stored in the
 // type they are written as. Integer-valued arrays are Int32, so ParaView shows them as
-// categories; single-precision ones (quality metrics, meant for viewing and
-// thresholding) are Float32, which halves their size on disk; all others are Float64.
+// categories; single-precision ones (quality metrics and the layer mesh's point
+// directions, meant for viewing and thresholding) are Float32, which halves their size
+// on disk; all others are Float64.
 //
 // Why not doubles throughout: the arrays of a layer mesh outweigh the mesh. On a
 // 400k-cell mesh its seven metrics, its validity and flags and its layer numbers took

@@ -55,7 +55,7 @@
 //
 // Output arrays
 //   point  normal        (3) direction of the column segment leaving the point (the
-//                            arriving one for a column top)
+//                            arriving one for a column top), single precision
 //   point  column_height     path length of the point's whole column (on all its points)
 //   point  stop_reason   int StopReason of the point's column (0 = reached all layers)
 //   point  layers        int layers the point's column reached

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "blayer/core/surface.h"
@@ -20,8 +21,12 @@ class LayerAssembler {
   // Starts the mesh with the wall points (ids 0..V-1); wall point v's `normal` is the
   // wall direction of its column where it has one.
   LayerAssembler(const TriSurface& wall, const StepDirections& wall_directions);
-  // The columns of a layout; wall point w's `normal` is that of its first column.
+  // The columns of a layout; wall point w's `normal` is that of its first column. The
+  // second form shares the layout (the march's, which the checker shares too) instead of
+  // holding a copy of it.
   LayerAssembler(const TriSurface& wall, const ColumnLayout& layout, const StepDirections& wall_directions);
+  LayerAssembler(const TriSurface& wall, std::shared_ptr<const ColumnLayout> layout,
+                 const StepDirections& wall_directions);
 
   // Reserves room for the most cells n_layers layers can hold (each element's largest
   // split, with every column growing): the mesh's arrays then never reallocate while
@@ -46,7 +51,7 @@ class LayerAssembler {
 
   // The mesh in two steps: take_mesh moves out its points and cells, attach_arrays then
   // adds its arrays:
-  //   point  normal (3), column_height, stop_reason, layers, fan_column   (extrude_layers.h)
+  //   point  normal (3, Float32), column_height, stop_reason, layers, fan_column   (extrude_layers.h)
   //   cell   layer
   // A run summarises its cells in between, so that the summary's tables and the arrays
   // never add up in its peak memory.
@@ -54,14 +59,21 @@ class LayerAssembler {
   void attach_arrays(const ColumnState& columns, VolumeMesh* mesh);
 
  private:
-  std::vector<LayerElement> elements_;
-  std::vector<char> in_fan_;  // per column
+  void set_point_normal(std::int64_t p, const Vec3& n);
+
+  std::shared_ptr<const ColumnLayout> layout_;
+  const std::vector<LayerElement>& elements_;
+  const std::vector<char>& in_fan_;  // per column
   std::size_t n_wall_elements_ = 0;
   std::int64_t fan_cells_ = 0;
   VolumeMesh mesh_;
-  std::vector<Vec3> point_normal_;
+  // Per point, its column's direction in the layer that made it, in single precision
+  // (the array is for viewing, and doubles were a tenth of a run's peak memory).
+  std::vector<float> point_normal_;
   std::vector<int> point_column_;
-  std::vector<int> cell_layer_;
+  // Per cell, its layer, in two bytes while the layers grow (kMaxLayers fits): written
+  // as the Int32 array `layer`.
+  std::vector<std::uint16_t> cell_layer_;
   std::vector<int> columns_per_layer_;
   double min_visibility_ = 1.0;
 };
