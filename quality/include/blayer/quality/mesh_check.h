@@ -26,7 +26,7 @@
 //
 // Threads: the per-cell passes and the face matching run in parallel with TBB (use
 // tbb::global_control to limit them). The result does not depend on the thread count.
-// Memory: about 8 bytes per cell face plus the per-cell arrays of the report (~70
+// Memory: about 8 bytes per cell face plus the per-cell arrays of the report (66
 // bytes per cell).
 #pragma once
 
