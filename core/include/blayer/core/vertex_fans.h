@@ -8,14 +8,9 @@
 
 namespace blayer {
 
-// The fan of vertex p: triangles (p, ring[j], ring[j+1]) in the surface's own winding,
-// ordered so that consecutive triangles share the edge (p, ring[j+1]).
-// closed: the ring wraps around (ring.size() == triangles.size());
-// open (boundary vertex): ring.size() == triangles.size() + 1 and the first and last
-// ring vertices lie on the boundary.
-// The lists are views into VertexFans' flat arrays (valid while it lives): a vector per
-// fan cost a heap block each, with its header, and a 56-byte record per point, which a
-// run holds for its whole march.
+// A fan's list of ids: a view into VertexFans' flat arrays, valid while they live. A
+// vector per list cost a heap block each, with its header, and a 56-byte record per
+// point, which a run holds for its whole march.
 class IdRange {
  public:
   IdRange() = default;
@@ -31,13 +26,18 @@ class IdRange {
   const int* last_ = nullptr;
 };
 
+// The fan of vertex p: triangles (p, ring[j], ring[j+1]) in the surface's own winding,
+// ordered so that consecutive triangles share the edge (p, ring[j+1]).
+// closed: the ring wraps around (ring.size() == triangles.size());
+// open (boundary vertex): ring.size() == triangles.size() + 1 and the first and last
+// ring vertices lie on the boundary.
 struct VertexFan {
   IdRange ring;
   IdRange triangles;
   bool closed = false;
 };
 
-// Every point's fan, in three flat arrays: fans[v] is a view of point v's.
+// Every point's fan in flat arrays (ids and where each point's start): fans[v] is a view of point v's.
 class FanTable {
  public:
   std::size_t size() const { return closed_.size(); }
