@@ -282,7 +282,7 @@ CheckCounts count_cells(const VolumeMesh& mesh, const MeshCheckReport& r, const 
 template <class Id>
 void count_layers(const VolumeMesh& mesh, const DataArray& layer, MeshCheckReport* r) {
   const std::size_t n = mesh.n_cells();
-  std::map<long, std::size_t> start;  // cells per layer, then where each layer's start
+  std::map<long, std::size_t> start;  // cells per layer, then where each layer's cells start
   for (std::size_t c = 0; c < n; ++c)
     if (std::isfinite(layer.values[c])) ++start[std::lround(layer.values[c])];
   std::size_t total = 0;

@@ -37,7 +37,8 @@ struct VertexFan {
   bool closed = false;
 };
 
-// Every point's fan in flat arrays (ids and where each point's start): fans[v] is a view of point v's.
+// Every point's fan in flat arrays (the ids, and where each point's start): fans[v] is
+// a view of point v's.
 class FanTable {
  public:
   std::size_t size() const { return closed_.size(); }
