@@ -53,15 +53,15 @@ FanPrecheck::Round FanPrecheck::round_of(const TriSurface& wall, const ColumnLay
                                          const WallPlanes& planes, const StepDirections& dirs, const ColumnPlan& plan,
                                          const ExtrusionParams& params, const std::vector<char>& needed) {
   const int nc = layout.n_columns();
-  // Each column's run has a known length (its point, its layer count, three words per
-  // layer; none for a column no checked element holds): laid out first, then the
-  // columns are filled and hashed in parallel.
-  std::vector<int> grown(nc);
+  // Each column's run has a known length (its point, whether it grows the first layer,
+  // and then the three words of that layer's top; none for a column no checked element
+  // holds): laid out first, then the columns are filled and hashed in parallel.
+  std::vector<char> grows(nc);
   Round r;
   r.run_start.assign(static_cast<std::size_t>(nc) + 1, 0);
   for (int c = 0; c < nc; ++c) {
-    grown[c] = dirs.ok[c] && std::min(plan.planned_layers[c], plan.n_layers) > 0 ? 1 : 0;  // the first layer
-    r.run_start[c + 1] = r.run_start[c] + (needed[c] ? 2 + 3 * static_cast<std::size_t>(grown[c]) : 0);
+    grows[c] = dirs.ok[c] && std::min(plan.planned_layers[c], plan.n_layers) > 0;
+    r.run_start[c + 1] = r.run_start[c] + (needed[c] ? (grows[c] ? 5 : 2) : 0);
   }
   r.runs.resize(r.run_start[nc]);
   r.by_hash.resize(nc);
@@ -71,13 +71,12 @@ FanPrecheck::Round FanPrecheck::round_of(const TriSurface& wall, const ColumnLay
       return;
     }
     const int w = layout.wall_point[c];
-    const int m = grown[c];
     std::uint64_t* out = r.runs.data() + r.run_start[c];
     *out++ = static_cast<std::uint64_t>(w);
-    *out++ = static_cast<std::uint64_t>(m);
-    const Vec3& p = wall.points[w];
-    for (int k = 0; k < m; ++k) {
-      const double h = plan.cumulative(c, k);
+    *out++ = static_cast<std::uint64_t>(grows[c]);
+    if (grows[c]) {
+      const Vec3& p = wall.points[w];
+      const double h = plan.cumulative(c, 0);
       const Vec3 top =
           p + std::clamp(planes.step_to_height(c, p, dirs.n[c], h), h, params.max_step_stretch * h) * dirs.n[c];
       for (double x : top) *out++ = bits(x);
@@ -89,12 +88,12 @@ FanPrecheck::Round FanPrecheck::round_of(const TriSurface& wall, const ColumnLay
   return r;
 }
 
-int FanPrecheck::Round::grown(int c) const {
-  return run_start[c + 1] == run_start[c] ? 0 : static_cast<int>(runs[run_start[c] + 1]);
+bool FanPrecheck::Round::grows(int c) const {
+  return run_start[c + 1] != run_start[c] && runs[run_start[c] + 1] != 0;
 }
 
-Vec3 FanPrecheck::Round::top(int c, int k) const {
-  const std::uint64_t* t = runs.data() + run_start[c] + 2 + 3 * k;
+Vec3 FanPrecheck::Round::top(int c) const {
+  const std::uint64_t* t = runs.data() + run_start[c] + 2;
   return {from_bits(t[0]), from_bits(t[1]), from_bits(t[2])};
 }
 
@@ -165,8 +164,8 @@ std::vector<int> FanPrecheck::failing_points(const TriSurface& wall, const Colum
   std::vector<Vec3> up(nc);
   std::vector<char> grows(nc, 0);
   for (int c = 0; c < nc; ++c) {
-    if (current.grown(c) == 0) continue;
-    up[c] = current.top(c, 0);
+    if (!current.grows(c)) continue;
+    up[c] = current.top(c);
     grows[c] = 1;
   }
   // The elements are checked in parallel; the verdicts are merged in element order, so

@@ -51,9 +51,9 @@ class FanPrecheck {
     bool operator<(const ElementKey& o) const;
   };
   // One round's straight columns and the elements that passed. A column's trajectory
-  // (its id is the column) is its run through the prechecked layers, as bits: its wall
-  // point, the number of those layers it grows (0 without a direction) and the top of
-  // each, its step stretched to its height above the wall planes (capped at
+  // (its id is the column) is its run through the prechecked layer, as bits: its wall
+  // point, whether it grows that layer (not without a direction) and then the top,
+  // its step stretched to its height above the wall planes (capped at
   // params.max_step_stretch).
   struct Round {
     std::vector<std::uint64_t> runs;                        // the trajectories, concatenated
@@ -62,8 +62,8 @@ class FanPrecheck {
     std::vector<ElementKey> passed;                         // sorted
     // A column of this round with trajectory [t, t + n), or -1.
     int find(const std::uint64_t* t, std::size_t n, std::uint64_t hash) const;
-    int grown(int c) const;
-    Vec3 top(int c, int k) const;
+    bool grows(int c) const;
+    Vec3 top(int c) const;  // of a column that grows
   };
   // The trajectories of the columns with `needed` set; the others have empty runs and
   // no hash.
