@@ -203,7 +203,8 @@ class LayoutBuilder {
     for (int f = 0; f < nf; ++f) fn[f] = normalized(triangle_area_vector(wall_, wall_.triangles[f]));
     is_fan_.assign(nv_, 0);
     if (p_.fan_angle_deg > 0.0) {
-      const std::vector<Ridge> candidates = find_ridges(wall_, fn, p_.fan_angle_deg * kDegToRad);
+      const double ridge_turn = p_.fan_angle_deg * (1.0 + kFanAngleSlack) * kDegToRad;
+      const std::vector<Ridge> candidates = find_ridges(wall_, fn, ridge_turn);
       std::vector<char> no_fan = excluded;
       do ridges_ = ridges_with_fans(candidates, fans_, no_fan, &is_fan_);
       while (drop_adjacent_ridge_ends(wall_, ridges_, is_fan_, &no_fan));
@@ -272,7 +273,7 @@ class LayoutBuilder {
       for (int x : {r.a, r.b}) {
         if (!is_fan_[x]) continue;
         const double gap = angle_between(sector_dir_[x][sector_at(x, r.t0)], sector_dir_[x][sector_at(x, r.t1)]);
-        m = std::max(m, static_cast<int>(std::ceil(gap / max_sector - 1e-9)));
+        m = std::max(m, static_cast<int>(std::ceil(gap / max_sector - kFanAngleSlack)));
       }
     }
   }

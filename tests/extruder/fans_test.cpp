@@ -190,7 +190,7 @@ TEST(FanLayout, EachRidgeChainGetsTheSlicesItsOwnTurnNeeds) {
     const double turn = degrees(angle_between(unit_normal(w, e.triangle[0]), unit_normal(w, e.triangle[1])));
     if (turn <= 60.0) continue;
     ++n_ridges;
-    const int expected = static_cast<int>(std::ceil(turn / 30.0 - 1e-9));
+    const int expected = static_cast<int>(std::ceil(turn / 30.0 - kFanAngleSlack));
     n_three += expected == 3;
     n_four += expected == 4;
     EXPECT_EQ(slices[std::make_pair(e.lo, e.hi)], expected) << "edge " << e.lo << "-" << e.hi << " turning " << turn;
@@ -200,6 +200,108 @@ TEST(FanLayout, EachRidgeChainGetsTheSlicesItsOwnTurnNeeds) {
   EXPECT_EQ(n_four, 2 * 4);
   EXPECT_EQ(static_cast<int>(slices.size()), n_ridges);
   expect_closed_and_oriented(l.front);
+}
+
+// A surface's points turned to a generic attitude, moved away from the origin and
+// rounded to float, as an STL file stores them: face normals move by ~1e-6 rad.
+void turn_and_round_to_float(TriSurface* s) {
+  const double a = 0.3, b = 0.7, c = 1.1;
+  for (Vec3& p : s->points) {
+    Vec3 q{p[0], std::cos(a) * p[1] - std::sin(a) * p[2], std::sin(a) * p[1] + std::cos(a) * p[2]};
+    q = Vec3{std::cos(b) * q[0] + std::sin(b) * q[2], q[1], -std::sin(b) * q[0] + std::cos(b) * q[2]};
+    q = Vec3{std::cos(c) * q[0] - std::sin(c) * q[1], std::sin(c) * q[0] + std::cos(c) * q[1], q[2]};
+    for (int i = 0; i < 3; ++i) p[i] = static_cast<double>(static_cast<float>(q[i] + 10.0 * (i + 1)));
+  }
+}
+
+// How many of the surface's convex-or-not edges turning by about `angle` degrees (within
+// 1e-3) turn past it by more than 1e-12 of it; fails on an edge turning otherwise.
+int edges_past(const TriSurface& s, double angle, double min_turn) {
+  int past = 0;
+  for (const SurfaceEdge& e : build_edge_topology(s).edges) {
+    const double turn = degrees(angle_between(unit_normal(s, e.triangle[0]), unit_normal(s, e.triangle[1])));
+    if (turn < min_turn || std::fabs(turn - angle) > 1e-3) continue;
+    past += turn > angle * (1.0 + 1e-12);
+  }
+  return past;
+}
+
+// A prism over a regular hexagon of unit radius, height 1, caps triangulated from their
+// centres: its side edges turn by exactly 60 degrees, its rim edges by 90.
+TriSurface hexagonal_prism() {
+  TriSurface s;
+  for (int z = 0; z < 2; ++z)
+    for (int i = 0; i < 6; ++i) s.points.push_back({std::cos(kPi * i / 3.0), std::sin(kPi * i / 3.0), double(z)});
+  s.points.push_back({0, 0, 0});
+  s.points.push_back({0, 0, 1});
+  const Vec3 centre{0.0, 0.0, 0.5};
+  auto add = [&](Triangle t) {
+    const Vec3 c = (s.points[t[0]] + s.points[t[1]] + s.points[t[2]]) / 3.0;
+    if (dot(triangle_area_vector(s, t), c - centre) < 0) std::swap(t[1], t[2]);
+    s.triangles.push_back(t);
+  };
+  for (int i = 0; i < 6; ++i) {
+    const int j = (i + 1) % 6;
+    add({i, j, 6 + j});
+    add({i, 6 + j, 6 + i});
+    add({12, i, j});
+    add({13, 6 + i, 6 + j});
+  }
+  return s;
+}
+
+// Columns per point on the edges (two face columns) of a layout, in increasing order of
+// the point's column count: {columns, points}.
+std::map<std::size_t, int> edge_point_column_counts(const ColumnLayout& l) {
+  std::map<std::size_t, int> counts;
+  for (const auto& [w, cols] : columns_by_point(l)) {
+    int faces = 0;
+    for (int c : cols) faces += !l.faceless[c];
+    if (faces == 2) ++counts[cols.size()];
+  }
+  return counts;
+}
+
+TEST(FanLayout, NinetyDegreeEdgesReadInSinglePrecisionKeepThreeSlices) {
+  const int n = 3;
+  TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, n);
+  turn_and_round_to_float(&box);
+  ASSERT_GT(edges_past(box, 90.0, 60.0), 0) << "the rounding moved no edge past 90 degrees: the case tests nothing";
+  const ColumnLayout l = layout_of(box);
+  EXPECT_EQ(l.n_fan_points, 12 * (n - 1) + 8);
+  // 2 face columns and 2 sub-normals at every edge point, as on the exact box.
+  const std::map<std::size_t, int> expected{{4u, 12 * (n - 1)}};
+  EXPECT_EQ(edge_point_column_counts(l), expected);
+  expect_closed_and_oriented(l.front);
+}
+
+TEST(FanLayout, SixtyDegreeEdgesReadInSinglePrecisionAreNoRidgesAtTheSixtyDegreeFanAngle) {
+  TriSurface hex = hexagonal_prism();
+  turn_and_round_to_float(&hex);
+  ASSERT_GT(edges_past(hex, 60.0, 30.0), 0) << "the rounding moved no side edge past 60 degrees: the case tests nothing";
+  const ColumnLayout l = layout_of(hex);
+  // The two rims' 12 edges only, 3 slices each: every ring point has its two face
+  // columns and 2 sub-normals.
+  EXPECT_EQ(l.n_ridge_edges, 12);
+  EXPECT_EQ(l.n_corners, 0);
+  const std::map<std::size_t, int> expected{{4u, 12}};
+  EXPECT_EQ(edge_point_column_counts(l), expected);
+  expect_closed_and_oriented(l.front);
+}
+
+TEST(FanLayout, ATurnPastAMultipleOfTheSectorByMoreThanTheSlackTakesAnotherSlice) {
+  // The apex edge of a wedge with a 89.9-degree apex turns by 90.1 degrees, past three
+  // 30-degree sectors by 1/300 of one (the slack is 1/10,000): 4 slices, 3 sub-normals.
+  const TriSurface w = wedge_prism(89.9, 4.0, 2.0, 4);
+  const ColumnLayout l = layout_of(w);
+  int n_apex = 0;
+  for (const auto& [p, cols] : columns_by_point(l)) {
+    const Vec3& x = w.points[p];
+    if (!(x[0] == 0.0 && x[1] > 0.0 && x[1] < 2.0)) continue;
+    ++n_apex;
+    EXPECT_EQ(cols.size(), 5u);
+  }
+  EXPECT_EQ(n_apex, 3);
 }
 
 TEST(FanLayout, MixedCornerSplitsIntoTheFlatTopAndTheConcaveSides) {

@@ -14,7 +14,9 @@
 //   sectors' normals are interpolated (slerp) so that no angular gap exceeds
 //   max_sector: m - 1 sub-normal columns, m uniform over a ridge chain (ridge edges
 //   joined through fan points on exactly two of them; corners and ridge ends separate
-//   chains, since their fans across different edges are distinct). A corner (three or
+//   chains, since their fans across different edges are distinct). Turns within
+//   kFanAngleSlack of fan_angle or of a multiple of max_sector count as those angles
+//   (see there). A corner (three or
 //   more ridge edges) also gets a centre column (the normalised sum of its loop's
 //   directions), and its loop of directions is closed by a patch of triangles around it.
 //
@@ -44,6 +46,18 @@ struct FanParams {
   double fan_angle_deg = 60.0;    // 0 disables fans
   double max_sector_deg = 30.0;   // largest angle between neighbouring columns of a fan
 };
+
+// Fraction of an angle limit within which a wall angle counts as at the limit: a ridge
+// turns by more than fan_angle (1 + kFanAngleSlack), and its fans take
+// m = ceil(turn / max_sector - kFanAngleSlack) slices. CAD edges turn by exact angles
+// (a hexagon's 60 degrees, a box's 90: 3 slices of 30), and single-precision
+// coordinates (every STL file) move a face normal by about 6e-8 times the
+// coordinates' magnitude over the edge length: a 90-degree edge then reads 90.00001
+// and took a fourth slice at random, chain by chain (a perforated block from STL had
+// 2,513 more columns than from OFF and 4 fans that fell back), and a hexagon's edges
+// became ridges at random. 1e-4 of 30 degrees is 0.003 degrees, far below any meaning
+// for a fan, and above that noise on edges down to 1/900 of the coordinates' magnitude.
+constexpr double kFanAngleSlack = 1e-4;
 
 // What one layer of the front becomes: a triangle (a wall triangle's columns, or a
 // corner patch triangle) or a strip quad (columns q0 q1 q2 q3, q0 q1 of one fan point
