@@ -48,7 +48,7 @@ struct FanParams {
 };
 
 // Fraction of an angle limit within which a wall angle counts as at the limit: a ridge
-// turns by more than fan_angle (1 + kFanAngleSlack), and its fans take
+// turns by more than fan_angle x (1 + kFanAngleSlack), and its fans take
 // m = ceil(turn / max_sector - kFanAngleSlack) slices. CAD edges turn by exact angles
 // (a hexagon's 60 degrees, a box's 90: 3 slices of 30), and single-precision
 // coordinates (every STL file) move a face normal by about 6e-8 times the
