@@ -286,6 +286,11 @@ TEST(FanLayout, SixtyDegreeEdgesReadInSinglePrecisionAreNoRidgesAtTheSixtyDegree
   const std::map<std::size_t, int> expected{{4u, 12}};
   EXPECT_EQ(edge_point_column_counts(l), expected);
   expect_closed_and_oriented(l.front);
+  // A fan angle 0.01 degrees lower (1.7e-4 of it, past the slack) takes the side edges
+  // too: every ring point is then a corner of three ridges.
+  const ColumnLayout lower = layout_of(hex, 59.99);
+  EXPECT_EQ(lower.n_ridge_edges, 18);
+  EXPECT_EQ(lower.n_corners, 12);
 }
 
 TEST(FanLayout, ATurnPastAMultipleOfTheSectorByMoreThanTheSlackTakesAnotherSlice) {
