@@ -225,30 +225,6 @@ int edges_past(const TriSurface& s, double angle) {
   return past;
 }
 
-// A prism over a regular hexagon of unit radius, height 1, caps triangulated from their
-// centres: its side edges turn by exactly 60 degrees, its rim edges by 90.
-TriSurface hexagonal_prism() {
-  TriSurface s;
-  for (int z = 0; z < 2; ++z)
-    for (int i = 0; i < 6; ++i) s.points.push_back({std::cos(kPi * i / 3.0), std::sin(kPi * i / 3.0), double(z)});
-  s.points.push_back({0, 0, 0});
-  s.points.push_back({0, 0, 1});
-  const Vec3 centre{0.0, 0.0, 0.5};
-  auto add = [&](Triangle t) {
-    const Vec3 c = (s.points[t[0]] + s.points[t[1]] + s.points[t[2]]) / 3.0;
-    if (dot(triangle_area_vector(s, t), c - centre) < 0) std::swap(t[1], t[2]);
-    s.triangles.push_back(t);
-  };
-  for (int i = 0; i < 6; ++i) {
-    const int j = (i + 1) % 6;
-    add({i, j, 6 + j});
-    add({i, 6 + j, 6 + i});
-    add({12, i, j});
-    add({13, 6 + i, 6 + j});
-  }
-  return s;
-}
-
 // Columns per point on the edges (two face columns) of a layout, in increasing order of
 // the point's column count: {columns, points}.
 std::map<std::size_t, int> edge_point_column_counts(const ColumnLayout& l) {
@@ -275,7 +251,9 @@ TEST(FanLayout, NinetyDegreeEdgesReadInSinglePrecisionKeepThreeSlices) {
 }
 
 TEST(FanLayout, SixtyDegreeEdgesReadInSinglePrecisionAreNoRidgesAtTheSixtyDegreeFanAngle) {
-  TriSurface hex = hexagonal_prism();
+  // A hexagonal prism, caps fanned from their centres: its side edges turn by exactly
+  // 60 degrees, its rim edges by 90.
+  TriSurface hex = test_surfaces::capped_cylinder(6, 1, 1.0, 1.0);
   turn_and_round_to_float(&hex);
   ASSERT_GT(edges_past(hex, 60.0), 0) << "the rounding moved no side edge past 60 degrees: the case tests nothing";
   const ColumnLayout l = layout_of(hex);
