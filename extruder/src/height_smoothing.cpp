@@ -20,6 +20,8 @@ void smooth_downward(const Csr& nbr, const std::vector<char>& mask, int rings, s
         if (mask[*u] && (*f)[*u] + slope < m) {
           m = (*f)[*u] + slope;
           why = (*reason)[*u];
+        } else if (mask[*u] && (*f)[*u] + slope == m && (*reason)[*u] < why) {
+          why = (*reason)[*u];  // a tie: the neighbours' order must not decide it
         }
       g[v] = m;
       rg[v] = why;

@@ -65,6 +65,25 @@ TEST(HeightSmoothing, LowSpotRampsBackByOneOverRingsPlusOnePerRing) {
   for (double x : f) EXPECT_LE(x, 1.0);
 }
 
+// Two low spots either side of a point lower it to the same value; the reason it takes
+// is the lower one whichever spot holds which reason (its neighbours are listed by
+// point number, so the first one must not win the tie).
+TEST(HeightSmoothing, TiedLowSpotsGiveTheLowestReasonWhicheverNeighbourComesFirst) {
+  const TriSurface s = flat_grid(8);
+  const WallTopology t = build_wall_topology(s);
+  const int centre = 4 * 9 + 4, left = centre - 1, right = centre + 1;
+  for (const bool collision_left : {true, false}) {
+    std::vector<double> f(t.n_points(), 1.0);
+    std::vector<StopReason> why(t.n_points(), StopReason::kNone);
+    f[left] = f[right] = 0.2;
+    why[left] = collision_left ? StopReason::kCollision : StopReason::kProximity;
+    why[right] = collision_left ? StopReason::kProximity : StopReason::kCollision;
+    smooth_downward(t.vertex_neighbours, t.used, 3, &f, &why);
+    EXPECT_DOUBLE_EQ(f[centre], 0.45);
+    EXPECT_EQ(why[centre], StopReason::kCollision) << "collision on the " << (collision_left ? "left" : "right");
+  }
+}
+
 TEST(ProximityRays, RayTriangleDistanceIsExactAndMissesOutside) {
   const Vec3 a{0, 0, 1}, b{1, 0, 1}, c{0, 1, 1};
   EXPECT_DOUBLE_EQ(ray_triangle_distance({0.2, 0.2, 0}, {0, 0, 1}, a, b, c, 10.0), 1.0);
