@@ -73,9 +73,16 @@ void stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnSt
                      std::vector<char>* grows) {
   const Csr& g = topo.group_columns;
   for (int i = 0; i < g.n_rows(); ++i) {
-    const int* first_stopped = std::find_if(g.begin(i), g.end(i), [&](int c) { return columns->stopped[c] != 0; });
-    if (first_stopped == g.end(i)) continue;
-    const StopReason why = columns->reason[*first_stopped];
+    // The group's stopped columns all stopped in this step (the group stops with its
+    // first); of several, the lowest reason, so that the columns' order does not decide.
+    bool any_stopped = false;
+    StopReason why = StopReason::kNone;
+    for (const int* c = g.begin(i); c != g.end(i); ++c)
+      if (columns->stopped[*c] && (!any_stopped || columns->reason[*c] < why)) {
+        why = columns->reason[*c];
+        any_stopped = true;
+      }
+    if (!any_stopped) continue;
     for (const int* c = g.begin(i); c != g.end(i); ++c) {
       if (columns->stopped[*c]) continue;
       end_column_after(plan, *c, k, why);

@@ -192,6 +192,27 @@ TEST(ColumnPlan, LoweringALayerRestartsTheGrowthFromIt) {
   EXPECT_EQ(plan.target_total[0], 15.0);
 }
 
+// A fan point of three columns, two of which stop in the same step for different
+// reasons: the third, and the report, take the lower reason whichever column comes first.
+TEST(FanGroups, ColumnsStoppedTogetherPassOnTheLowestReasonWhicheverComesFirst) {
+  ResolvedGrowthLaw law = resolve_growth_law(GrowthLaw{4, 1.0, 2.0, 0.0, 0.0, false});
+  for (const bool quality_first : {true, false}) {
+    WallTopology topo;
+    topo.group_columns.start = {0, 3};
+    topo.group_columns.items = {0, 1, 2};
+    ColumnPlan plan = plan_columns(law, {1.0, 1.0, 1.0});
+    ColumnState columns = ColumnState::on_wall(std::vector<Vec3>(3, Vec3{0, 0, 0}), std::vector<char>(3, 1));
+    columns.stop(quality_first ? 0 : 1, StopReason::kQuality);
+    columns.stop(quality_first ? 1 : 0, StopReason::kProximity);
+    std::vector<char> grows{0, 0, 1};
+    stop_fan_groups(2, topo, &plan, &columns, &grows);
+    EXPECT_TRUE(columns.stopped[2]);
+    EXPECT_EQ(grows[2], 0);
+    EXPECT_EQ(columns.reason[2], StopReason::kQuality) << (quality_first ? "quality first" : "proximity first");
+    EXPECT_EQ(plan.planned_layers[2], 2);
+  }
+}
+
 TEST(StepDirections, SmoothingNeverLowersVisibilityBelowTheRawDirection) {
   const TriSurface wall = test::icosphere(2, 1.0);
   const WallTopology topo = build_wall_topology(wall);

@@ -27,8 +27,9 @@ void stop_planned_ends(int k, const ColumnPlan& plan, ColumnState* columns);
 
 // The columns of a fan point grow together (their strip cells have no closure for a
 // fan split in between): once one of them has stopped, the others stop after the same
-// k layers with its reason (and, with grows, do not grow in layer k). Called after each
-// stopper of the march (planned ends, visibility, proximity, the checks).
+// k layers with its reason (the lowest of those that stopped together) and, with grows,
+// do not grow in layer k. Called after each stopper of the march (planned ends,
+// visibility, proximity, the checks).
 void stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnState* columns,
                      std::vector<char>* grows = nullptr);
 
