@@ -16,13 +16,18 @@ void smooth_downward(const Csr& nbr, const std::vector<char>& mask, int rings, s
       if (!mask[v]) return;
       double m = (*f)[v];
       StopReason why = (*reason)[v];
-      for (const int* u = nbr.begin(v); u != nbr.end(v); ++u)
-        if (mask[*u] && (*f)[*u] + slope < m) {
-          m = (*f)[*u] + slope;
+      bool lowered = false;  // by a neighbour: a tie with the point's own value keeps its reason
+      for (const int* u = nbr.begin(v); u != nbr.end(v); ++u) {
+        if (!mask[*u]) continue;
+        const double bound = (*f)[*u] + slope;
+        if (bound < m) {
+          m = bound;
           why = (*reason)[*u];
-        } else if (mask[*u] && (*f)[*u] + slope == m && (*reason)[*u] < why) {
-          why = (*reason)[*u];  // a tie: the neighbours' order must not decide it
+          lowered = true;
+        } else if (lowered && bound == m && (*reason)[*u] < why) {
+          why = (*reason)[*u];  // a tie between neighbours: their order must not decide it
         }
+      }
       g[v] = m;
       rg[v] = why;
     });

@@ -84,6 +84,22 @@ TEST(HeightSmoothing, TiedLowSpotsGiveTheLowestReasonWhicheverNeighbourComesFirs
   }
 }
 
+// A limited point whose own value a neighbour's bound only ties keeps its own reason,
+// even a higher one.
+TEST(HeightSmoothing, ANeighbourThatOnlyTiesAPointsOwnValueLeavesItsReason) {
+  const TriSurface s = flat_grid(8);
+  const WallTopology t = build_wall_topology(s);
+  const int centre = 4 * 9 + 4;
+  std::vector<double> f(t.n_points(), 1.0);
+  std::vector<StopReason> why(t.n_points(), StopReason::kNone);
+  f[centre - 1] = 0.2;
+  why[centre - 1] = StopReason::kCollision;
+  f[centre] = f[centre - 1] + 1.0 / 4;  // the neighbour's bound over 3 rings, to the bit
+  why[centre] = StopReason::kProximity;
+  smooth_downward(t.vertex_neighbours, t.used, 3, &f, &why);
+  EXPECT_EQ(why[centre], StopReason::kProximity);
+}
+
 TEST(ProximityRays, RayTriangleDistanceIsExactAndMissesOutside) {
   const Vec3 a{0, 0, 1}, b{1, 0, 1}, c{0, 1, 1};
   EXPECT_DOUBLE_EQ(ray_triangle_distance({0.2, 0.2, 0}, {0, 0, 1}, a, b, c, 10.0), 1.0);

@@ -14,9 +14,10 @@ namespace blayer {
 // `rings` Jacobi passes f[v] <= f[u] + d(u,v)/(rings+1) for every u within `rings`
 // rings (d = ring distance), so a limited column ramps back to full height without a
 // step. Only points with mask set take part. Never raises a value. The reason of the
-// value that lowered a point travels with it; where values tie, the lowest StopReason
-// does, so that the reasons do not depend on the order of the points. rings <= 0: no
-// change.
+// value that lowered a point travels with it; where neighbours lower it to the same
+// value, the lowest StopReason of theirs does, so that the reasons do not depend on the
+// order of the points (a neighbour that only ties the point's own value leaves its
+// reason). rings <= 0: no change.
 void smooth_downward(const Csr& neighbours, const std::vector<char>& mask, int rings, std::vector<double>* f,
                      std::vector<StopReason>* reason);
 
