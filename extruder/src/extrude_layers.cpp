@@ -173,6 +173,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
   TriSurface front;
   front.triangles = start.triangles;
   std::vector<Vec3> next(start.points.size());
+  TriangleBvh ray_tree;  // the proximity rays' segments, refitted from layer to layer
   rep.t_setup = phase.seconds();
 
   for (int k = 0; k < rep.growth.layers; ++k) {
@@ -198,7 +199,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
 
     phase.restart();
     checker.begin_layer(k, columns.top, columns.layers);
-    limit_by_proximity(k, checker.front_rays(), topo, planes, dirs, params, &plan, &columns);
+    limit_by_proximity(k, checker.front_rays(), topo, planes, dirs, params, &plan, &columns, &ray_tree);
     stop_fan_groups(k, topo, &plan, &columns);
     rep.t_proximity += phase.seconds();
 
@@ -223,6 +224,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
   // memory, which is reached while the output arrays are filled.
   checker.release();
   wall_tree->reset();
+  ray_tree = TriangleBvh{};
 
   phase.restart();
   res.mesh = assembler.take_mesh();

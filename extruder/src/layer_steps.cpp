@@ -93,25 +93,27 @@ void stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnSt
 }
 
 void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& topo, const WallPlanes& planes,
-                        const StepDirections& d, const ExtrusionParams& p, ColumnPlan* plan, ColumnState* columns) {
+                        const StepDirections& d, const ExtrusionParams& p, ColumnPlan* plan, ColumnState* columns,
+                        TriangleBvh* ray_tree) {
   const int nv = columns->size();
   const std::vector<char> active = growing(*columns);
   // The column's allowed total as a fraction of its target: what it has grown plus
   // what the gap ahead allows, or its planned total where nothing is ahead. Smoothing
   // this (not the fraction of the remaining layers) ramps the column tops, as the
   // wall-gap cap does before marching.
-  std::vector<double> allowed(nv, 1.0);
-  std::vector<char> hit(nv, 0);
+  std::vector<double> allowed(nv, 1.0), vis(nv, 0.0), reach(nv, 0.0), gap;
+  parallel_vertices(nv, [&](int v) {
+    if (!active[v]) return;
+    vis[v] = std::max(planes.visibility(v, d.n[v]), 1.0 / p.max_step_stretch);
+    reach[v] = plan->remaining(v, k) / vis[v] / p.proximity_safety;
+  });
+  rays.first_hits(active, columns->top, d.n, reach, &gap, ray_tree);
   parallel_vertices(nv, [&](int v) {
     if (!active[v]) return;
     const double done = plan->cumulative(v, k - 1), remaining = plan->remaining(v, k);
     allowed[v] = (done + remaining) / plan->target_total[v];
-    const double vis = std::max(planes.visibility(v, d.n[v]), 1.0 / p.max_step_stretch);
-    const double gap = rays.first_hit(v, columns->top[v], d.n[v], remaining / vis / p.proximity_safety);
-    if (gap < HUGE_VAL && p.proximity_safety * gap * vis < remaining) {
-      allowed[v] = (done + p.proximity_safety * gap * vis) / plan->target_total[v];
-      hit[v] = 1;
-    }
+    if (gap[v] < HUGE_VAL && p.proximity_safety * gap[v] * vis[v] < remaining)
+      allowed[v] = (done + p.proximity_safety * gap[v] * vis[v]) / plan->target_total[v];
   });
   std::vector<StopReason> why(nv, StopReason::kProximity);
   smooth_downward(topo.vertex_neighbours, active, p.height_smoothing_rings, &allowed, &why);

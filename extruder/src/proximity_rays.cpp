@@ -1,9 +1,11 @@
 #include "blayer/extruder/proximity_rays.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace blayer {
 
@@ -40,6 +42,34 @@ ProximityRays wall_proximity_rays(const std::vector<Triangle>& triangles, const 
   return r;
 }
 
+namespace {
+
+// Distance along dir from o to triangle i of (tris, P) within t_max, or +inf: also +inf
+// when the triangle is incident to wall point w (on_columns: has a corner on one of w's
+// columns) or does not face the ray.
+template <class PointOf>
+double distance_if_facing(int w, PointOf&& point_of, const Vec3& o, const Vec3& dir, double t_max,
+                          const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
+                          const std::vector<Vec3>& normal, bool on_columns, int i) {
+  const Triangle& t = tris[i];
+  if (on_columns ? (point_of(t[0]) == w || point_of(t[1]) == w || point_of(t[2]) == w)
+                 : (t[0] == w || t[1] == w || t[2] == w))
+    return HUGE_VAL;
+  if (!(dot(dir, normal[i]) < 0.0)) return HUGE_VAL;
+  return ray_triangle_distance(o, dir, P[t[0]], P[t[1]], P[t[2]], t_max);
+}
+
+}  // namespace
+
+double ProximityRays::distance_to_plane(int v, const Vec3& o, const Vec3& dir, double t_max) const {
+  if (!plane || (*on_plane)[v]) return HUGE_VAL;
+  // Seen from the model's side the plane faces the ray when dir points towards it.
+  const double towards = -dot(dir, plane->normal);
+  if (!(towards > 0.0)) return HUGE_VAL;
+  const double t = plane->signed_distance(o) / towards;
+  return t >= 0.0 && t <= t_max ? t : HUGE_VAL;
+}
+
 double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_max) const {
   double best = HUGE_VAL;
   const int w = wall_point ? (*wall_point)[v] : v;
@@ -47,12 +77,7 @@ double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_
   auto search = [&](const TriangleBvh& tree, const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
                     const std::vector<Vec3>& normal, bool on_columns) {
     tree.for_each_on_segment(o, dir, std::min(t_max, best), [&](int i, double* tm) {
-      const Triangle& t = tris[i];
-      if (on_columns ? (point_of(t[0]) == w || point_of(t[1]) == w || point_of(t[2]) == w)
-                     : (t[0] == w || t[1] == w || t[2] == w))
-        return;
-      if (!(dot(dir, normal[i]) < 0.0)) return;
-      const double d = ray_triangle_distance(o, dir, P[t[0]], P[t[1]], P[t[2]], *tm);
+      const double d = distance_if_facing(w, point_of, o, dir, *tm, tris, P, normal, on_columns, i);
       if (d < best) {
         best = d;
         *tm = d;
@@ -62,15 +87,48 @@ double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_
   search(*wall_tree, *triangles, *wall_points, *wall_normal, false);
   if (front_points)
     search(*front_tree, front_triangles ? *front_triangles : *triangles, *front_points, *front_normal, true);
-  if (plane && !(*on_plane)[v]) {
-    // Seen from the model's side the plane faces the ray when dir points towards it.
-    const double towards = -dot(dir, plane->normal);
-    if (towards > 0.0) {
-      const double t = plane->signed_distance(o) / towards;
-      if (t >= 0.0 && t <= t_max) best = std::min(best, t);
-    }
+  return std::min(best, distance_to_plane(v, o, dir, t_max));
+}
+
+void ProximityRays::first_hits(const std::vector<char>& active, const std::vector<Vec3>& origin,
+                               const std::vector<Vec3>& dir, const std::vector<double>& t_max,
+                               std::vector<double>* gap, TriangleBvh* kept) const {
+  const int n = static_cast<int>(origin.size());
+  gap->assign(n, HUGE_VAL);
+  // Each segment as a triangle with two equal corners: its box and slabs hold it, so
+  // every triangle the segment meets overlaps it in the pair traversal.
+  auto corners = [&](int v, Vec3* c) {
+    c[0] = origin[v];
+    c[1] = c[2] = active[v] ? origin[v] + t_max[v] * dir[v] : origin[v];
+  };
+  TriangleBvh local;
+  TriangleBvh& segments = kept ? *kept : local;
+  if (segments.empty() || segments.size() != n) {
+    segments.build_triangles(n, corners);
+  } else {
+    segments.refit_triangles(corners);
   }
-  return best;
+  std::vector<char> node_wanted;
+  segments.mark_nodes(active, &node_wanted);
+  auto point_of = [&](int c) { return wall_point ? (*wall_point)[c] : c; };
+  // Hits are rare (tens per layer on the generated CAD cases): each thread lists its own.
+  tbb::enumerable_thread_specific<std::vector<std::pair<int, double>>> hits;
+  auto search = [&](const TriangleBvh& tree, const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
+                    const std::vector<Vec3>& normal, bool on_columns) {
+    segments.for_each_overlapping_pair(active, node_wanted, tree, [&](int v, int i) {
+      const double d =
+          distance_if_facing(point_of(v), point_of, origin[v], dir[v], t_max[v], tris, P, normal, on_columns, i);
+      if (d < HUGE_VAL) hits.local().emplace_back(v, d);
+    });
+  };
+  search(*wall_tree, *triangles, *wall_points, *wall_normal, false);
+  if (front_points)
+    search(*front_tree, front_triangles ? *front_triangles : *triangles, *front_points, *front_normal, true);
+  for (const auto& list : hits)
+    for (const auto& [v, d] : list) (*gap)[v] = std::min((*gap)[v], d);
+  if (plane)
+    for (int v = 0; v < n; ++v)
+      if (active[v]) (*gap)[v] = std::min((*gap)[v], distance_to_plane(v, origin[v], dir[v], t_max[v]));
 }
 
 }  // namespace blayer

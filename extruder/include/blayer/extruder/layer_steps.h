@@ -40,9 +40,11 @@ void stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnSt
 // that fraction of the remaining plan is smoothed downward over height_smoothing_rings
 // and the columns are fitted into it: compressed from layer k up (kCompress) or ended
 // after the layers that fit at the law's heights (kTerminate), reason kProximity.
-// Columns left with no layer at k stop.
+// Columns left with no layer at k stop. ray_tree, when given, keeps the rays' tree from
+// one layer to the next (ProximityRays::first_hits).
 void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& topo, const WallPlanes& planes,
-                        const StepDirections& d, const ExtrusionParams& p, ColumnPlan* plan, ColumnState* columns);
+                        const StepDirections& d, const ExtrusionParams& p, ColumnPlan* plan, ColumnState* columns,
+                        TriangleBvh* ray_tree = nullptr);
 
 // Exact checks of layer k with local repair, until every cell of it passes. Columns of
 // failing cells or colliding triangles are

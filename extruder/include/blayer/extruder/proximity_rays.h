@@ -40,6 +40,21 @@ struct ProximityRays {
   // and faces the ray (dir . normal < 0: a wall or front seen
   // from its fluid side), or to the symmetry plane for a column off it; +inf if none.
   double first_hit(int v, const Vec3& o, const Vec3& dir, double t_max) const;
+
+  // (*gap)[v] = first_hit(v, origin[v], dir[v], t_max[v]) for every column v with
+  // active[v], +inf for the others. The same distances, found by descending a tree over
+  // the segments together with the wall's and the front's trees
+  // (TriangleBvh::for_each_overlapping_pair), where one descent per ray would walk
+  // their upper nodes again for every column. With `kept`, the segments' tree is kept
+  // there between calls: built when it holds another number of columns, refitted
+  // otherwise (the columns move little from one layer to the next, and a build took
+  // as long as the descents it saved on the perforated block).
+  void first_hits(const std::vector<char>& active, const std::vector<Vec3>& origin, const std::vector<Vec3>& dir,
+                  const std::vector<double>& t_max, std::vector<double>* gap, TriangleBvh* kept = nullptr) const;
+
+ private:
+  // Distance to the symmetry plane for a column off it, +inf otherwise (see first_hit).
+  double distance_to_plane(int v, const Vec3& o, const Vec3& dir, double t_max) const;
 };
 
 // Unit normals of triangles (zero-area ones give NaN and face no ray).

@@ -188,6 +188,8 @@ class TriangleBvh {
   }
 
   bool empty() const { return nodes_.empty(); }
+  // The number of items the tree was built over.
+  int size() const { return static_cast<int>(items_.size()); }
 
   // Which nodes hold an item with wanted[item] != 0, for the pair traversals below
   // (*node_wanted is resized to the node count).
