@@ -145,9 +145,11 @@ struct MeshVolumes {
 // The one validity decision of a run: the quality module's exact check of the whole
 // assembled mesh (layers and fill). Nothing is written unless it passes; the check's
 // per-cell arrays are added to the mesh. *volumes: summed from the check's per-cell
-// volumes in double precision, before they are stored as the Float32 array.
-MeshCheckReport decide_validity(VolumeMesh& mesh, std::size_t n_layer_cells, MeshVolumes* volumes) {
-  MeshCheckReport check = check_volume_mesh(mesh);
+// volumes in double precision, before they are stored as the Float32 array. The
+// metrics' percentiles and per-layer summaries only for the JSON report (for_report).
+MeshCheckReport decide_validity(VolumeMesh& mesh, std::size_t n_layer_cells, bool for_report, MeshVolumes* volumes) {
+  MeshCheckReport check =
+      check_volume_mesh(mesh, for_report ? CheckSummaries::kFull : CheckSummaries::kMinMax);
   const std::vector<double>& volume = check.metrics[kVolumeMetric];
   for (std::size_t c = 0; c < volume.size(); ++c) (c < n_layer_cells ? volumes->layers : volumes->fill) += volume[c];
   release_free_heap();  // the check's face tables, before the arrays below are made
@@ -256,7 +258,7 @@ int run_extrude_command(const ParamValues& params) {
 
   const Stopwatch check_time;
   MeshVolumes volumes;
-  const MeshCheckReport check = decide_validity(result.mesh, n_layer_cells, &volumes);
+  const MeshCheckReport check = decide_validity(result.mesh, n_layer_cells, !out.report.empty(), &volumes);
   release_free_heap();  // the check's double metrics, now stored as Float32
   const double check_seconds = check_time.seconds();
 

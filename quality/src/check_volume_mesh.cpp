@@ -227,13 +227,17 @@ void match_faces(const VolumeMesh& mesh, std::atomic<std::uint8_t>* flags, std::
   });
 }
 
-MetricSummary summarize(const char* name, std::vector<double> v) {
+MetricSummary summarize(const char* name, std::vector<double> v, bool percentiles) {
   MetricSummary s;
   s.name = name;
   v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
   s.count = v.size();
-  if (v.empty()) {
-    s.min = s.p1 = s.p5 = s.p50 = s.p95 = s.p99 = s.max = kNaN;
+  s.min = s.p1 = s.p5 = s.p50 = s.p95 = s.p99 = s.max = kNaN;
+  if (v.empty()) return s;
+  if (!percentiles) {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    s.min = *lo;
+    s.max = *hi;
     return s;
   }
   // Nearest-rank percentiles by successive selection on the shrinking upper part: O(n),
@@ -255,7 +259,8 @@ MetricSummary summarize(const char* name, std::vector<double> v) {
 
 // Counts and metric summaries over the n given cells (all cells when `cells` is null).
 template <class Id>
-CheckCounts count_cells(const VolumeMesh& mesh, const MeshCheckReport& r, const Id* cells, std::size_t n) {
+CheckCounts count_cells(const VolumeMesh& mesh, const MeshCheckReport& r, const Id* cells, std::size_t n,
+                        bool percentiles = true) {
   CheckCounts cc;
   auto id = [&](std::size_t i) { return cells ? static_cast<std::size_t>(cells[i]) : i; };
   cc.cells = n;
@@ -271,7 +276,7 @@ CheckCounts count_cells(const VolumeMesh& mesh, const MeshCheckReport& r, const 
   tbb::parallel_for(std::size_t{0}, kCheckMetricNames.size(), [&](std::size_t k) {
     std::vector<double> v(n);
     for (std::size_t i = 0; i < n; ++i) v[i] = r.metrics[k][id(i)];
-    cc.metrics[k] = summarize(kCheckMetricNames[k], std::move(v));
+    cc.metrics[k] = summarize(kCheckMetricNames[k], std::move(v), percentiles);
   });
   return cc;
 }
@@ -313,7 +318,7 @@ bool MeshCheckReport::ok() const {
          misoriented_faces == 0;
 }
 
-MeshCheckReport check_volume_mesh(const VolumeMesh& mesh) {
+MeshCheckReport check_volume_mesh(const VolumeMesh& mesh, CheckSummaries summaries) {
   check_structure(mesh);
   const std::size_t n = mesh.n_cells();
   MeshCheckReport r;
@@ -375,7 +380,9 @@ MeshCheckReport check_volume_mesh(const VolumeMesh& mesh) {
     }
   });
 
-  r.totals = count_cells<std::size_t>(mesh, r, nullptr, n);
+  const bool full = summaries == CheckSummaries::kFull;
+  r.totals = count_cells<std::size_t>(mesh, r, nullptr, n, full);
+  if (!full) return r;
 
   const DataArray* layer = mesh.find_cell_array("layer");
   if (layer && layer->n_components == 1 && layer->values.size() == n) {

@@ -34,6 +34,10 @@ TEST(ThicknessVerdict, ALimitedLayerIsNamedWithItsReasons) {
   EXPECT_GT(thin, 0.1);
   EXPECT_LT(thin, 0.5);
   EXPECT_GT(j["verdict"]["thin_columns_by_reason"]["wall_gap"].get<double>(), 0.0);
+  // The check's full summaries, which a run without --report leaves out: the metrics'
+  // percentiles and one entry per layer (the case asks for 10).
+  EXPECT_TRUE(j["check"]["metrics"]["min_corner_jacobian"]["p50"].is_number()) << j["check"].dump();
+  EXPECT_EQ(j["check"]["layers"].size(), 10u);
 }
 
 TEST(ThicknessVerdict, RequireThicknessExitsThreeAndStillWritesTheMesh) {

@@ -83,6 +83,41 @@ TEST(MeshCheck, PerLayerSummariesGroupCellsByLayerValueInAnyOrderAndSkipNonFinit
   EXPECT_LT(r.layers[2].counts.metrics[2].min, r.layers[2].counts.metrics[2].max);  // two different cells
 }
 
+// kMinMax leaves out the percentiles and the layers, nothing else: the same per-cell
+// results, counts and extremes as the full check, on a column with an inverted cell
+// and a NaN metric (the top layer's growth ratio).
+TEST(MeshCheck, MinMaxSummariesKeepTheCellsCountsAndExtremesOfTheFullCheck) {
+  VolumeMesh m = prism_column({0.0, 0.1, 0.22, 0.364, 0.5});
+  m.points[10][2] = 0.15;  // node b at the third level drops below the second level
+  const MeshCheckReport full = check_volume_mesh(m);
+  const MeshCheckReport minmax = check_volume_mesh(m, CheckSummaries::kMinMax);
+  ASSERT_EQ(full.totals.inverted, 1u);
+  EXPECT_EQ(minmax.totals.inverted, full.totals.inverted);
+  EXPECT_EQ(minmax.totals.cells, full.totals.cells);
+  EXPECT_EQ(minmax.totals.by_type, full.totals.by_type);
+  EXPECT_EQ(minmax.validity, full.validity);
+  EXPECT_EQ(minmax.flags, full.flags);
+  EXPECT_EQ(minmax.upper_neighbour, full.upper_neighbour);
+  EXPECT_EQ(minmax.boundary_faces, full.boundary_faces);
+  ASSERT_EQ(minmax.totals.metrics.size(), full.totals.metrics.size());
+  for (std::size_t k = 0; k < full.metrics.size(); ++k) {
+    for (std::size_t c = 0; c < m.n_cells(); ++c) {
+      const double a = minmax.metrics[k][c], b = full.metrics[k][c];
+      EXPECT_TRUE(a == b || (std::isnan(a) && std::isnan(b))) << "metric " << k << " cell " << c;
+    }
+    const MetricSummary& s = minmax.totals.metrics[k];
+    EXPECT_EQ(s.name, full.totals.metrics[k].name);
+    EXPECT_EQ(s.count, full.totals.metrics[k].count) << s.name;
+    EXPECT_EQ(s.min, full.totals.metrics[k].min) << s.name;
+    EXPECT_EQ(s.max, full.totals.metrics[k].max) << s.name;
+    EXPECT_TRUE(std::isnan(s.p50)) << s.name;
+  }
+  EXPECT_EQ(minmax.min_scaled_jacobian(), full.min_scaled_jacobian());
+  EXPECT_LT(full.min_scaled_jacobian(), 0.0);
+  EXPECT_EQ(full.layers.size(), 4u);
+  EXPECT_TRUE(minmax.layers.empty());
+}
+
 TEST(MeshCheck, InvertedCellIsCountedAndExtractedWithItsArrays) {
   VolumeMesh m = prism_column({0.0, 0.1, 0.2, 0.3});
   m.points[7][2] = 0.05;  // node b at the second level drops below the first level
