@@ -111,7 +111,8 @@ void ProximityRays::first_hits(const std::vector<char>& active, const std::vecto
   std::vector<char> node_wanted;
   segments.mark_nodes(active, &node_wanted);
   auto point_of = [&](int c) { return wall_point ? (*wall_point)[c] : c; };
-  // Hits are rare (tens per layer on the generated CAD cases): each thread lists its own.
+  // Hits are few next to the pairs tested (most rays meet nothing): each thread lists
+  // its own.
   tbb::enumerable_thread_specific<std::vector<std::pair<int, double>>> hits;
   auto search = [&](const TriangleBvh& tree, const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
                     const std::vector<Vec3>& normal, bool on_columns) {

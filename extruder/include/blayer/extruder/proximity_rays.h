@@ -47,8 +47,8 @@ struct ProximityRays {
   // (TriangleBvh::for_each_overlapping_pair), where one descent per ray would walk
   // their upper nodes again for every column. With `kept`, the segments' tree is kept
   // there between calls: built when it holds another number of columns, refitted
-  // otherwise (the columns move little from one layer to the next, and a build took
-  // as long as the descents it saved on the perforated block).
+  // otherwise (the columns move little from one layer to the next, and a build per call
+  // took nearly as long as the descents it saved on the perforated block).
   void first_hits(const std::vector<char>& active, const std::vector<Vec3>& origin, const std::vector<Vec3>& dir,
                   const std::vector<double>& t_max, std::vector<double>* gap, TriangleBvh* kept = nullptr) const;
 
