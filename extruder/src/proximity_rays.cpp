@@ -95,18 +95,21 @@ void ProximityRays::first_hits(const std::vector<char>& active, const std::vecto
                                std::vector<double>* gap, TriangleBvh* kept) const {
   const int n = static_cast<int>(origin.size());
   gap->assign(n, HUGE_VAL);
-  // Each segment as a triangle with two equal corners: its box and slabs hold it, so
-  // every triangle the segment meets overlaps it in the pair traversal.
-  auto corners = [&](int v, Vec3* c) {
-    c[0] = origin[v];
-    c[1] = c[2] = active[v] ? origin[v] + t_max[v] * dir[v] : origin[v];
+  // Each segment's box holds it, so every triangle the segment meets overlaps it in the
+  // pair traversal. Boxes only: with diagonal slabs (diagonal_slabs.h) as well, the
+  // perforated block's peak memory rose by 1 to 2.5 MB and its proximity time stayed.
+  auto box_of = [&](int v) {
+    const Vec3 end = active[v] ? origin[v] + t_max[v] * dir[v] : origin[v];
+    return Box::of_triangle(origin[v], end, end);
   };
   TriangleBvh local;
   TriangleBvh& segments = kept ? *kept : local;
   if (segments.empty() || segments.size() != n) {
-    segments.build_triangles(n, corners);
+    std::vector<Box> boxes(n);
+    tbb::parallel_for(0, n, [&](int v) { boxes[v] = box_of(v); });
+    segments.build(boxes);
   } else {
-    segments.refit_triangles(corners);
+    segments.refit_each(box_of);
   }
   std::vector<char> node_wanted;
   segments.mark_nodes(active, &node_wanted);
