@@ -101,19 +101,19 @@ void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& to
   // what the gap ahead allows, or its planned total where nothing is ahead. Smoothing
   // this (not the fraction of the remaining layers) ramps the column tops, as the
   // wall-gap cap does before marching.
-  std::vector<double> allowed(nv, 1.0), vis(nv, 0.0), reach(nv, 0.0), gap;
+  auto visibility = [&](int v) { return std::max(planes.visibility(v, d.n[v]), 1.0 / p.max_step_stretch); };
+  std::vector<double> allowed(nv, 1.0), gap;
+  // The rays' reach, in `allowed` until the gaps are known.
   parallel_vertices(nv, [&](int v) {
-    if (!active[v]) return;
-    vis[v] = std::max(planes.visibility(v, d.n[v]), 1.0 / p.max_step_stretch);
-    reach[v] = plan->remaining(v, k) / vis[v] / p.proximity_safety;
+    if (active[v]) allowed[v] = plan->remaining(v, k) / visibility(v) / p.proximity_safety;
   });
-  rays.first_hits(active, columns->top, d.n, reach, &gap, ray_tree);
+  rays.first_hits(active, columns->top, d.n, allowed, &gap, ray_tree);
   parallel_vertices(nv, [&](int v) {
     if (!active[v]) return;
-    const double done = plan->cumulative(v, k - 1), remaining = plan->remaining(v, k);
+    const double done = plan->cumulative(v, k - 1), remaining = plan->remaining(v, k), vis = visibility(v);
     allowed[v] = (done + remaining) / plan->target_total[v];
-    if (gap[v] < HUGE_VAL && p.proximity_safety * gap[v] * vis[v] < remaining)
-      allowed[v] = (done + p.proximity_safety * gap[v] * vis[v]) / plan->target_total[v];
+    if (gap[v] < HUGE_VAL && p.proximity_safety * gap[v] * vis < remaining)
+      allowed[v] = (done + p.proximity_safety * gap[v] * vis) / plan->target_total[v];
   });
   std::vector<StopReason> why(nv, StopReason::kProximity);
   smooth_downward(topo.vertex_neighbours, active, p.height_smoothing_rings, &allowed, &why);
