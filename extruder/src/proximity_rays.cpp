@@ -59,6 +59,16 @@ double distance_if_facing(int w, PointOf&& point_of, const Vec3& o, const Vec3& 
   return ray_triangle_distance(o, dir, P[t[0]], P[t[1]], P[t[2]], t_max);
 }
 
+// search(tree, triangles, points, unit normals, on_columns) over the wall and, when the
+// view has one, the front: the obstacles of first_hit and first_hits alike.
+template <class Search>
+void search_obstacles(const ProximityRays& r, Search&& search) {
+  search(*r.wall_tree, *r.triangles, *r.wall_points, *r.wall_normal, false);
+  if (r.front_points)
+    search(*r.front_tree, r.front_triangles ? *r.front_triangles : *r.triangles, *r.front_points, *r.front_normal,
+           true);
+}
+
 }  // namespace
 
 double ProximityRays::distance_to_plane(int v, const Vec3& o, const Vec3& dir, double t_max) const {
@@ -84,9 +94,7 @@ double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_
       }
     });
   };
-  search(*wall_tree, *triangles, *wall_points, *wall_normal, false);
-  if (front_points)
-    search(*front_tree, front_triangles ? *front_triangles : *triangles, *front_points, *front_normal, true);
+  search_obstacles(*this, search);
   return std::min(best, distance_to_plane(v, o, dir, t_max));
 }
 
@@ -125,9 +133,7 @@ void ProximityRays::first_hits(const std::vector<char>& active, const std::vecto
       if (d < HUGE_VAL) hits.local().emplace_back(v, d);
     });
   };
-  search(*wall_tree, *triangles, *wall_points, *wall_normal, false);
-  if (front_points)
-    search(*front_tree, front_triangles ? *front_triangles : *triangles, *front_points, *front_normal, true);
+  search_obstacles(*this, search);
   for (const auto& list : hits)
     for (const auto& [v, d] : list) (*gap)[v] = std::min((*gap)[v], d);
   if (plane)
