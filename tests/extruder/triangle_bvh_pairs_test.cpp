@@ -16,6 +16,7 @@
 #include <mutex>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -331,6 +332,84 @@ TEST(TriangleBvhPairs, TreesBeyondTheSlabLimitKeepNoSlabs) {
     t.push_back({c, c + Vec3{0.1, 0, 0}, c + Vec3{0, 0.1, 0}});
   }
   EXPECT_TRUE(visits_the_slivers());
+}
+
+// The checker's new front against its current front, a copy of the same tree refitted
+// (TriangleBvh::for_each_overlapping_pair_with_twin): one descent must find exactly
+// the pairs of the self traversal and of the two-tree traversal, with and without
+// slabs, for all, none and some wanted triangles, and after a partial refit.
+TEST(TriangleBvhPairs, ATwinTraversalFindsTheSelfAndTwoTreePairsOnce) {
+  std::mt19937 rng(37);
+  const std::vector<Tri> cur = sliver_triangles(rng, 13, 0.0);
+  std::vector<Tri> next = cur;
+  std::uniform_real_distribution<double> lift(0.03, 0.12), slide(-0.2, 0.2);
+  for (Tri& t : next)
+    for (Vec3& p : t) p = p + Vec3{slide(rng), slide(rng), lift(rng)};
+  auto corners_of = [](const std::vector<Tri>& t) {
+    return [&t](int i, Vec3* c) { std::copy(t[i].begin(), t[i].end(), c); };
+  };
+  const TriangleBvh current = slabbed_tree(cur);
+  TriangleBvh fresh = current;
+  fresh.refit_triangles(corners_of(next));
+  TriangleBvh boxed_current = current, boxed_fresh = fresh;  // no slabs: every box overlap
+  boxed_current.refit(boxes_of(cur));
+  boxed_fresh.refit(boxes_of(next));
+  auto expect_as_two_traversals = [&](const TriangleBvh& a, const TriangleBvh& b, const std::vector<char>& wanted,
+                                      const char* what) {
+    std::vector<char> nodes;
+    a.mark_nodes(wanted, &nodes);
+    Visited self, twin, self_alone, two_alone;
+    a.for_each_overlapping_pair_with_twin(
+        wanted, nodes, b, [&](int i, int j) { self.add(std::min(i, j), std::max(i, j)); },
+        [&](int i, int j) { twin.add(i, j); });
+    a.for_each_overlapping_pair(wanted, nodes, [&](int i, int j) { self_alone.add(std::min(i, j), std::max(i, j)); });
+    a.for_each_overlapping_pair(wanted, nodes, b, [&](int i, int j) { two_alone.add(i, j); });
+    EXPECT_EQ(self.repeats + twin.repeats, 0) << what;
+    EXPECT_EQ(self.pairs, self_alone.pairs) << what;
+    EXPECT_EQ(twin.pairs, two_alone.pairs) << what;
+    return std::make_pair(self.pairs, twin.pairs);
+  };
+  for (double share : {1.0, 0.0, 0.2}) {
+    const std::vector<char> wanted = random_mask(rng, static_cast<int>(next.size()), share);
+    const auto [self, twin] = expect_as_two_traversals(fresh, current, wanted, "slabs");
+    const std::vector<Box> bn = boxes_of(next), bc = boxes_of(cur);
+    EXPECT_TRUE(between(self, without_apart(brute_self_pairs(bn, wanted), next, next),
+                        without_apart(brute_self_pairs(grown(bn), wanted), next, next)));
+    EXPECT_TRUE(between(twin, without_apart(brute_pairs(bn, wanted, bc), next, cur),
+                        without_apart(brute_pairs(grown(bn), wanted, grown(bc)), next, cur)));
+    const auto [boxed_self, boxed_twin] = expect_as_two_traversals(boxed_fresh, boxed_current, wanted, "boxes");
+    EXPECT_TRUE(between(boxed_self, brute_self_pairs(bn, wanted), brute_self_pairs(grown(bn), wanted)));
+    EXPECT_TRUE(between(boxed_twin, brute_pairs(bn, wanted, bc), brute_pairs(grown(bn), wanted, grown(bc))));
+    if (share > 0.0) {
+      // A triangle against its own current place is a pair.
+      int own = 0;
+      for (const auto& [i, j] : twin) own += i == j;
+      EXPECT_GT(own, 0);
+    }
+  }
+  // A repair attempt moves some triangles again; the current front stays.
+  std::vector<char> moved(next.size(), 0);
+  for (std::size_t i = 0; i < next.size(); i += 5) {
+    moved[i] = 1;
+    for (Vec3& p : next[i]) p = p + Vec3{0.25, 0.1, -0.05};
+  }
+  fresh.refit_triangles_where(&moved, corners_of(next));
+  const auto [self, twin] = expect_as_two_traversals(fresh, current, moved, "partly refitted");
+  const std::vector<Box> bn = boxes_of(next), bc = boxes_of(cur);
+  EXPECT_TRUE(between(twin, without_apart(brute_pairs(bn, moved, bc), next, cur),
+                      without_apart(brute_pairs(grown(bn), moved, grown(bc)), next, cur)));
+}
+
+TEST(TriangleBvhPairs, ATwinOfAnotherLayoutIsRefused) {
+  std::mt19937 rng(41);
+  TriangleBvh a, b;
+  a.build(random_boxes(rng, 40));
+  b.build(random_boxes(rng, 41));
+  const std::vector<char> all(40, 1);
+  std::vector<char> nodes;
+  a.mark_nodes(all, &nodes);
+  EXPECT_THROW(a.for_each_overlapping_pair_with_twin(all, nodes, b, [](int, int) {}, [](int, int) {}),
+               std::logic_error);
 }
 
 // Whether the segment o + t d, t in [0, t_max], meets the box: the slab test with the

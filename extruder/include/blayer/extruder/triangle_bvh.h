@@ -31,6 +31,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "blayer/core/assert.h"
 #include "blayer/core/vec3.h"
 #include "blayer/extruder/diagonal_slabs.h"
 
@@ -261,6 +262,75 @@ class TriangleBvh {
       } else if (na.count > 0 && nb.count > 0) {
         for (int i = na.first; i < na.first + na.count; ++i)
           for (int j = nb.first; j < nb.first + nb.count; ++j) pair(i, j);
+      } else {
+        split_pair(nodes_, a, nodes_, b, [&](int x, int y) { keep(x, y, push); });
+      }
+    };
+    traverse_pairs(descend);
+  }
+
+  // Both traversals above in one, against a twin: a tree of the same layout (a copy of
+  // this one, or this one's copy, refitted: the same items in the same leaves), as the
+  // checker's new and current fronts are. visit_self(i, j) for every unordered pair of
+  // distinct items of this tree as the self traversal gives them, and visit_twin(i, j)
+  // for every item i of this tree and j of the twin as the two-tree traversal gives
+  // them (i == j included). One descent of the node pairs {a, b} serves both, each
+  // unordered pair once for the twin's pairs in either order, where the two traversals
+  // descend the unordered pairs and then the ordered ones: on the perforated block's
+  // fronts the node pairs and their reads were most of the checks' traversal time.
+  // Thread-safe visits, no fixed order, as above.
+  template <class VisitSelf, class VisitTwin>
+  void for_each_overlapping_pair_with_twin(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
+                                           const TriangleBvh& twin, VisitSelf&& visit_self,
+                                           VisitTwin&& visit_twin) const {
+    BLAYER_ASSERT_MSG(twin.nodes_.size() == nodes_.size() && twin.items_.size() == items_.size(),
+                      "a twin tree has this tree's layout");
+    BLAYER_EXPENSIVE_ASSERT(twin.items_ == items_);
+    if (nodes_.empty() || !node_wanted[0]) return;
+    const std::vector<Node>& tn = twin.nodes_;
+    // Item pairs at leaf positions i, j.
+    auto self_pair = [&](int i, int j) {
+      if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]) && !slabs_apart(i, *this, j))
+        visit_self(items_[i], items_[j]);
+    };
+    auto twin_pair = [&](int i, int j) {
+      if (wanted[items_[i]] && item_box_[i].overlaps(twin.item_box_[j]) && !slabs_apart(i, twin, j))
+        visit_twin(items_[i], items_[j]);
+    };
+    // Whether node pair {a, b} may hold a pair of either kind.
+    auto keep = [&](int a, int b, auto&& push) {
+      const bool wa = node_wanted[a], wb = node_wanted[b];
+      if (!wa && !wb) return;
+      if ((a == b || nodes_[a].box.overlaps(nodes_[b].box)) || (wa && nodes_[a].box.overlaps(tn[b].box)) ||
+          (wb && nodes_[b].box.overlaps(tn[a].box)))
+        push(a, b);
+    };
+    auto descend = [&](int a, int b, auto&& push) {
+      const Node& na = nodes_[a];
+      const Node& nb = nodes_[b];
+      if (a == b) {
+        if (na.count > 0) {
+          for (int i = na.first; i < na.first + na.count; ++i) {
+            twin_pair(i, i);
+            for (int j = i + 1; j < na.first + na.count; ++j) {
+              self_pair(i, j);
+              twin_pair(i, j);
+              twin_pair(j, i);
+            }
+          }
+        } else {
+          const int l = na.first, r = na.first + na.left_nodes;
+          keep(l, l, push);
+          keep(r, r, push);
+          keep(l, r, push);
+        }
+      } else if (na.count > 0 && nb.count > 0) {
+        for (int i = na.first; i < na.first + na.count; ++i)
+          for (int j = nb.first; j < nb.first + nb.count; ++j) {
+            self_pair(i, j);
+            twin_pair(i, j);
+            twin_pair(j, i);
+          }
       } else {
         split_pair(nodes_, a, nodes_, b, [&](int x, int y) { keep(x, y, push); });
       }
