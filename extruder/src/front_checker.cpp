@@ -406,23 +406,27 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   for (auto& l : crossing_) l.clear();
   // Every pair is found by descending two trees together (TriangleBvh): the new front
   // against the wall and the current front for the queried triangles, and against
-  // itself for the pairs with a queried triangle, each pair once.
+  // itself for the pairs with a queried triangle, each pair once. The current front's
+  // tree has the new one's layout (both are the first front's tree, copied or refitted),
+  // so one descent finds its pairs and the new front's own.
   new_tree_.mark_nodes(query_, &query_nodes_);
   auto hit = [&](int f) { crossing_.local().push_back(f); };
   new_tree_.for_each_overlapping_pair(query_, query_nodes_, wall_->tree, [&](int f, int j) {
     if (soup_triangles_intersect(soup_, new_tris_[f], wall_tris_[j])) hit(f);
   });
-  if (k_ > 0)
-    new_tree_.for_each_overlapping_pair(query_, query_nodes_, cur_tree_, [&](int f, int j) {
-      if (!cur_is_wall_[j] && soup_triangles_intersect(soup_, new_tris_[f], cur_tris_[j])) hit(f);
-    });
-  new_tree_.for_each_overlapping_pair(query_, query_nodes_, [&](int f, int j) {
+  auto new_pair = [&](int f, int j) {
     if (!tri_grows_[f] || !tri_grows_[j]) return;
     if (soup_triangles_intersect(soup_, new_tris_[f], new_tris_[j])) {
       hit(f);
       hit(j);
     }
-  });
+  };
+  if (k_ > 0)
+    new_tree_.for_each_overlapping_pair_with_twin(query_, query_nodes_, cur_tree_, new_pair, [&](int f, int j) {
+      if (!cur_is_wall_[j] && soup_triangles_intersect(soup_, new_tris_[f], cur_tris_[j])) hit(f);
+    });
+  else
+    new_tree_.for_each_overlapping_pair(query_, query_nodes_, new_pair);
   for (const auto& l : crossing_)
     for (int f : l) collided_[f] = 1;
 }
