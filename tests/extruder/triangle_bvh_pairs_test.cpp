@@ -400,6 +400,70 @@ TEST(TriangleBvhPairs, ATwinTraversalFindsTheSelfAndTwoTreePairsOnce) {
                       without_apart(brute_pairs(grown(bn), moved, grown(bc)), next, cur)));
 }
 
+// The repair attempts' masks: so few wanted triangles (under 1 in kFewWanted) that the
+// traversals descend once per wanted triangle. The pairs must be those of brute force,
+// each once, in all three traversals: wanted triangles side by side (pairs of two wanted
+// ones), alone, one, and none.
+TEST(TriangleBvhPairs, FewWantedTrianglesFindEveryPairOnce) {
+  std::mt19937 rng(43);
+  const std::vector<Tri> cur = sliver_triangles(rng, 20, 0.0);
+  std::vector<Tri> next = cur;
+  std::uniform_real_distribution<double> lift(0.03, 0.12), slide(-0.2, 0.2);
+  for (Tri& t : next)
+    for (Vec3& p : t) p = p + Vec3{slide(rng), slide(rng), lift(rng)};
+  const TriangleBvh current = slabbed_tree(cur);
+  TriangleBvh fresh = current;
+  fresh.refit_triangles([&](int i, Vec3* c) { std::copy(next[i].begin(), next[i].end(), c); });
+  const std::vector<Tri> wall_tris = sliver_triangles(rng, 20, -0.05);
+  const TriangleBvh wall = slabbed_tree(wall_tris);
+  const int n = static_cast<int>(next.size());
+  std::vector<std::vector<char>> masks;
+  std::vector<char> runs(n, 0);  // neighbours in the sheet's order: many pairs of two wanted ones
+  for (int i = 100; i < 100 + n / TriangleBvh::kFewWanted - 1; ++i) runs[i] = 1;
+  masks.push_back(runs);
+  std::vector<char> scattered(n, 0), one(n, 0);
+  for (int i = 7; i < n; i += 2 * TriangleBvh::kFewWanted) scattered[i] = 1;
+  masks.push_back(scattered);
+  one[n / 2] = 1;
+  masks.push_back(one);
+  masks.emplace_back(n, 0);
+  const std::vector<Box> bn = boxes_of(next), bc = boxes_of(cur), bw = boxes_of(wall_tris);
+  for (const std::vector<char>& wanted : masks) {
+    const int count = static_cast<int>(std::count(wanted.begin(), wanted.end(), 1));
+    ASSERT_LT(count * TriangleBvh::kFewWanted, n);
+    std::vector<char> nodes;
+    fresh.mark_nodes(wanted, &nodes);
+    Visited self, twin, self_alone, two_alone;
+    fresh.for_each_overlapping_pair_with_twin(
+        wanted, nodes, current, [&](int i, int j) { self.add(std::min(i, j), std::max(i, j)); },
+        [&](int i, int j) { twin.add(i, j); });
+    fresh.for_each_overlapping_pair(wanted, nodes, [&](int i, int j) { self_alone.add(std::min(i, j), std::max(i, j)); });
+    fresh.for_each_overlapping_pair(wanted, nodes, current, [&](int i, int j) { two_alone.add(i, j); });
+    EXPECT_EQ(self.repeats + twin.repeats + self_alone.repeats + two_alone.repeats, 0) << count;
+    const Pairs exact_self = without_apart(brute_self_pairs(bn, wanted), next, next);
+    const Pairs exact_twin = without_apart(brute_pairs(bn, wanted, bc), next, cur);
+    const Pairs loose_self = without_apart(brute_self_pairs(grown(bn), wanted), next, next);
+    const Pairs loose_twin = without_apart(brute_pairs(grown(bn), wanted, grown(bc)), next, cur);
+    for (const Pairs* found : {&self.pairs, &self_alone.pairs})
+      EXPECT_TRUE(between(*found, exact_self, loose_self)) << count << ": " << found->size() << " against " << exact_self.size();
+    for (const Pairs* found : {&twin.pairs, &two_alone.pairs})
+      EXPECT_TRUE(between(*found, exact_twin, loose_twin)) << count << ": " << found->size() << " against " << exact_twin.size();
+    if (count > 1) EXPECT_FALSE(exact_twin.empty()) << count;
+    if (&wanted == &masks.front()) {  // the run: pairs of two wanted triangles, found from one side only
+      int both = 0;
+      for (const auto& [i, j] : exact_self) both += wanted[i] && wanted[j];
+      EXPECT_GT(both, 0);
+    }
+    // Against another tree (the wall).
+    Visited on_wall;
+    fresh.for_each_overlapping_pair(wanted, nodes, wall, [&](int i, int j) { on_wall.add(i, j); });
+    EXPECT_EQ(on_wall.repeats, 0);
+    EXPECT_TRUE(between(on_wall.pairs, without_apart(brute_pairs(bn, wanted, bw), next, wall_tris),
+                        without_apart(brute_pairs(grown(bn), wanted, grown(bw)), next, wall_tris)))
+        << count;
+  }
+}
+
 TEST(TriangleBvhPairs, ATwinOfAnotherLayoutIsRefused) {
   std::mt19937 rng(41);
   TriangleBvh a, b;

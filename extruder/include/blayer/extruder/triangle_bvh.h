@@ -208,6 +208,12 @@ class TriangleBvh {
     // popped): most pairs fail, and their push and pop cost more than the test.
     auto wanted_overlap = [&](int a, int b) { return node_wanted[a] && nodes_[a].box.overlaps(other.nodes_[b].box); };
     if (nodes_.empty() || other.nodes_.empty() || !wanted_overlap(0, 0)) return;
+    if (for_each_wanted_leaf_if_few(wanted, [&](int i) {
+          other.for_each_leaf_overlapping(item_box_[i], [&](int j) {
+            if (!slabs_apart(i, other, j)) visit(items_[i], other.items_[j]);
+          });
+        }))
+      return;
     auto leaves = [&](const Node& a, const Node& b) {
       for (int i = a.first; i < a.first + a.count; ++i) {
         if (!wanted[items_[i]]) continue;
@@ -237,6 +243,7 @@ class TriangleBvh {
   void for_each_overlapping_pair(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
                                  Visit&& visit) const {
     if (nodes_.empty() || !node_wanted[0]) return;
+    if (for_each_wanted_leaf_if_few(wanted, [&](int i) { own_pairs_of_leaf(i, wanted, visit); })) return;
     auto pair = [&](int i, int j) {
       if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]) && !slabs_apart(i, *this, j))
         visit(items_[i], items_[j]);
@@ -287,6 +294,13 @@ class TriangleBvh {
                       "a twin tree has this tree's layout");
     BLAYER_EXPENSIVE_ASSERT(twin.items_ == items_);
     if (nodes_.empty() || !node_wanted[0]) return;
+    if (for_each_wanted_leaf_if_few(wanted, [&](int i) {
+          own_pairs_of_leaf(i, wanted, visit_self);
+          twin.for_each_leaf_overlapping(item_box_[i], [&](int j) {
+            if (!slabs_apart(i, twin, j)) visit_twin(items_[i], twin.items_[j]);
+          });
+        }))
+      return;
     const std::vector<Node>& tn = twin.nodes_;
     // Item pairs at leaf positions i, j.
     auto self_pair = [&](int i, int j) {
@@ -371,9 +385,57 @@ class TriangleBvh {
     }
   }
 
+  // Below this share of wanted items (1 in kFewWanted), the pair traversals run one
+  // descent per wanted item instead of descending node pairs: the checker's repair
+  // attempts want a few hundred of the front's triangles, scattered, and the node pairs
+  // that lead to them are mostly pairs of their unwanted neighbours' nodes.
+  static constexpr int kFewWanted = 32;
+
  private:
   // Node boxes from the item boxes.
   void refit_nodes();
+
+  // When fewer than 1 in kFewWanted items are wanted: at_wanted(i) for the leaf
+  // position i of every wanted item, in parallel, and true; else nothing and false.
+  template <class AtWanted>
+  bool for_each_wanted_leaf_if_few(const std::vector<char>& wanted, AtWanted&& at_wanted) const {
+    const int n = static_cast<int>(items_.size());
+    int count = 0;
+    for (int i = 0; i < n; ++i) count += wanted[i] != 0;
+    if (static_cast<std::int64_t>(count) * kFewWanted >= n) return false;
+    tbb::parallel_for(0, n, [&](int i) {
+      if (wanted[items_[i]]) at_wanted(i);
+    });
+    return true;
+  }
+
+  // visit(j) for the leaf position j of every item whose box overlaps b.
+  template <class Visit>
+  void for_each_leaf_overlapping(const FloatBox& b, Visit&& visit) const {
+    if (nodes_.empty() || !nodes_[0].box.overlaps(b)) return;
+    int stack[128];  // one entry per level of the path plus one (depth below 72)
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (n.count > 0) {
+        for (int j = n.first; j < n.first + n.count; ++j)
+          if (item_box_[j].overlaps(b)) visit(j);
+      } else {
+        for (const int child : {n.first, n.first + n.left_nodes})
+          if (nodes_[child].box.overlaps(b)) stack[top++] = child;
+      }
+    }
+  }
+
+  // The self traversal's pairs of wanted leaf position i: each unordered pair once, by
+  // the smaller position when both items are wanted.
+  template <class Visit>
+  void own_pairs_of_leaf(int i, const std::vector<char>& wanted, Visit&& visit) const {
+    for_each_leaf_overlapping(item_box_[i], [&](int j) {
+      if (j != i && (i < j || !wanted[items_[j]]) && !slabs_apart(i, *this, j)) visit(items_[i], items_[j]);
+    });
+  }
 
   // Which of two nodes the pair traversals split: the larger by the sum of its box's
   // extents (volumes would tie at 0 for the flat boxes of axis-aligned faces).
