@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "blayer/extruder/column_heights.h"
 #include "blayer/extruder/column_plan.h"
@@ -98,6 +99,79 @@ TEST(HeightSmoothing, ANeighbourThatOnlyTiesAPointsOwnValueLeavesItsReason) {
   why[centre] = StopReason::kProximity;
   smooth_downward(t.vertex_neighbours, t.used, 3, &f, &why);
   EXPECT_EQ(why[centre], StopReason::kProximity);
+}
+
+// The smoothing by its definition: `rings` passes over every masked point, each from
+// the values and reasons of the pass before (the oracle of the passes that visit only
+// the points around the low ones).
+void smooth_every_point(const Csr& nbr, const std::vector<char>& mask, int rings, std::vector<double>* f,
+                        std::vector<StopReason>* reason) {
+  const double slope = 1.0 / (rings + 1);
+  for (int r = 0; r < rings; ++r) {
+    std::vector<double> g = *f;
+    std::vector<StopReason> rg = *reason;
+    for (int v = 0; v < static_cast<int>(f->size()); ++v) {
+      if (!mask[v]) continue;
+      bool lowered = false;
+      for (const int* u = nbr.begin(v); u != nbr.end(v); ++u) {
+        if (!mask[*u]) continue;
+        const double bound = (*f)[*u] + slope;
+        if (bound < g[v]) {
+          g[v] = bound;
+          rg[v] = (*reason)[*u];
+          lowered = true;
+        } else if (lowered && bound == g[v] && (*reason)[*u] < rg[v]) {
+          rg[v] = (*reason)[*u];
+        }
+      }
+    }
+    *f = g;
+    *reason = rg;
+  }
+}
+
+// Few low spots (the repair attempts' case: only their rings are visited) and many (every
+// point is), on values in steps of the slope so that ties are frequent, with points
+// left out of the mask, a value above the others and NaN: to the bit as the oracle.
+TEST(HeightSmoothing, FewOrManyLowSpotsSmoothExactlyAsPassesOverEveryPoint) {
+  const TriSurface s = flat_grid(30);
+  const WallTopology t = build_wall_topology(s);
+  const int n = t.n_points();
+  std::mt19937 rng(47);
+  for (const int rings : {1, 3})
+    for (const int low_spots : {0, 1, 5, 40, 400}) {
+      const double slope = 1.0 / (rings + 1);
+      std::vector<double> f(n, 1.0);
+      std::vector<StopReason> why(n, StopReason::kNone);
+      std::vector<char> mask(n, 1);
+      std::uniform_int_distribution<int> at(0, n - 1), steps(1, 2 * rings + 2), reason(1, 5);
+      for (int i = 0; i < low_spots; ++i) {
+        const int v = at(rng);
+        f[v] = 1.0 - slope * steps(rng);
+        why[v] = static_cast<StopReason>(reason(rng));
+      }
+      for (int i = 0; i < n / 20; ++i) mask[at(rng)] = 0;
+      f[at(rng)] = std::nan("");
+      // A point above the others by less than the slope, lowered by a neighbour one slope
+      // below the others, which is low against it only.
+      const int high = at(rng), below = *t.vertex_neighbours.begin(high);
+      f[high] = 1.0 + slope / 2;
+      f[below] = 1.0 - slope;
+      mask[high] = mask[below] = 1;
+      std::vector<double> expected = f;
+      std::vector<StopReason> expected_why = why;
+      smooth_every_point(t.vertex_neighbours, mask, rings, &expected, &expected_why);
+      smooth_downward(t.vertex_neighbours, mask, rings, &f, &why);
+      int changed = 0, differ = 0;
+      for (int v = 0; v < n; ++v) {
+        const bool same_value = std::isnan(expected[v]) ? std::isnan(f[v]) : expected[v] == f[v];
+        differ += !same_value || expected_why[v] != why[v];
+        changed += expected[v] < 1.0;
+      }
+      EXPECT_EQ(differ, 0) << rings << " rings, " << low_spots << " low spots";
+      EXPECT_LE(f[high], 1.0);  // lowered by its neighbour at least
+      if (low_spots > 0) EXPECT_GT(changed, low_spots / 2);
+    }
 }
 
 TEST(ProximityRays, RayTriangleDistanceIsExactAndMissesOutside) {
