@@ -23,10 +23,11 @@ double step_of(int k, int v, const ColumnPlan& plan, const WallPlanes& planes, c
   return std::clamp(s, h, p.max_step_stretch * h);
 }
 
-// Lowers layer k of every bad column (or ends it), then smooths the lowering downward.
+// Lowers layer k of every bad column (or ends it), then smooths the lowering downward;
+// *lowered[v] is set where layer k's height changed.
 void lower_failing_columns(int k, const FrontVerdict& verdict, const WallTopology& topo, const ExtrusionParams& p,
                            const std::vector<double>& start_height, ColumnPlan* plan, ColumnState* columns,
-                           std::vector<char>* grows) {
+                           std::vector<char>* grows, std::vector<char>* lowered) {
   const int nv = columns->size();
   std::vector<double> fraction(nv, 1.0);
   std::vector<StopReason> why(nv, StopReason::kNone);
@@ -49,7 +50,10 @@ void lower_failing_columns(int k, const FrontVerdict& verdict, const WallTopolog
   for (int v = 0; v < nv; ++v) {
     if (!(*grows)[v]) continue;
     const double h = std::max(fraction[v] * start_height[v], plan->height(v, 0));
-    if (h < plan->height(v, k)) lower_layer(plan, v, k, h, why[v]);
+    if (h < plan->height(v, k)) {
+      lower_layer(plan, v, k, h, why[v]);
+      (*lowered)[v] = 1;
+    }
   }
 }
 
@@ -138,8 +142,13 @@ std::vector<char> settle_layer(int k, const std::vector<Triangle>& triangles, co
   for (int v = 0; v < nv; ++v)
     if (grows[v]) start_height[v] = plan->height(v, k);
   FrontVerdict verdict;
+  // The columns whose step is (re)computed: all in the first attempt, then those a
+  // repair turned, lowered or stopped. A step depends only on the column's top, its
+  // direction, its planned heights and whether it grows, so the others keep theirs.
+  std::vector<char> restep(nv, 1), grew;
   for (int attempt = 0;; ++attempt) {
     parallel_vertices(nv, [&](int v) {
+      if (!restep[v]) return;
       if (!grows[v]) {
         (*next)[v] = columns->top[v];
         return;
@@ -152,12 +161,18 @@ std::vector<char> settle_layer(int k, const std::vector<Triangle>& triangles, co
     checker->check(attempt, columns->top, *next, grows, &verdict);
     if (!verdict.any_bad) break;
     if (attempt < p.direction_repair_passes) {
-      const std::vector<char> turned =
+      std::vector<char> turned =
           turn_failing_columns(triangles, topo, verdict.bad, verdict.bad_triangle, grows, p.min_visibility, d);
-      if (std::find(turned.begin(), turned.end(), 1) != turned.end()) continue;
+      if (std::find(turned.begin(), turned.end(), 1) != turned.end()) {
+        restep.swap(turned);
+        continue;
+      }
     }
-    lower_failing_columns(k, verdict, topo, p, start_height, plan, columns, &grows);
+    std::fill(restep.begin(), restep.end(), 0);
+    grew = grows;
+    lower_failing_columns(k, verdict, topo, p, start_height, plan, columns, &grows, &restep);
     stop_fan_groups(k, topo, plan, columns, &grows);
+    for (int v = 0; v < nv; ++v) restep[v] = restep[v] || grows[v] != grew[v];
   }
   return grows;
 }

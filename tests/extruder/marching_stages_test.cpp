@@ -567,6 +567,54 @@ TEST(LayerSteps, AFailingUpperLayerIsLoweredBeforeTheColumnEnds) {
   EXPECT_NEAR(planes.height_above(centre, next[centre]), 0.1 + plan.height(centre, 1), 1e-12);
 }
 
+// A repair attempt recomputes only the steps of the columns it turned, lowered or
+// stopped; the front it settles on must still be every column's step from its final
+// direction and heights (its top for the columns that stopped), to the bit. Leaning
+// columns get turned; under a slanted plate above the wall (which does not grow) the
+// columns are lowered, and those at their first height stopped.
+TEST(LayerSteps, TheSettledFrontIsEveryColumnsStepFromItsFinalDirectionAndHeights) {
+  TriSurface wall = flat_grid(10);
+  const int plate = static_cast<int>(wall.points.size());
+  for (const Vec3& q : {Vec3{5.5, 5.5, 0.12}, Vec3{8.5, 5.5, 0.5}, Vec3{8.5, 8.5, 0.5}, Vec3{5.5, 8.5, 0.12}})
+    wall.points.push_back(q);
+  wall.triangles.push_back({plate, plate + 2, plate + 1});
+  wall.triangles.push_back({plate, plate + 3, plate + 2});
+  const WallTopology topo = build_wall_topology(wall);
+  const WallPlanes planes(wall, single_column_layout(wall), topo);
+  ExtrusionParams p = unrepaired_params(3, 0.1, 2.0);  // layer 1 planned at 0.2, first height 0.1
+  p.direction_repair_passes = 2;
+  p.height_smoothing_rings = 2;
+  const ResolvedGrowthLaw law = resolve_growth_law(p.growth);
+  StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  ColumnPlan plan = plan_columns(law, std::vector<double>(wall.points.size(), 1.0));
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  for (int v = 0; v < plate; ++v) {  // after a first layer of 0.1
+    c.top[v] = wall.points[v] + Vec3{0.0, 0.0, 0.1};
+    c.layers[v] = 1;
+  }
+  for (int v = plate; v < plate + 4; ++v) c.stop(v, StopReason::kQuality);
+  d.n[2 * 11 + 2] = normalized(Vec3{20.0, 3.0, 1.0});
+  d.n[2 * 11 + 7] = normalized(Vec3{0.0, -6.0, 1.0});
+  const StepDirections before = d;
+  FrontChecker checker(wall, build_wall_topology(wall), true);
+  checker.begin_layer(1, c.top, c.layers);
+  std::vector<Vec3> next(wall.points.size());
+  const std::vector<char> grows = settle_layer(1, wall.triangles, topo, planes, p, &checker, &d, &plan, &c, &next);
+  const std::vector<double> step = layer_steps(1, plan, planes, d, c, p);
+  int turned = 0, lowered = 0, stopped = 0;
+  for (int v = 0; v < plate; ++v) {
+    // A turn that mends a column lets it grow at its planned height.
+    turned += !(d.n[v] == before.n[v]) && grows[v] && plan.height(v, 1) == 0.2;
+    lowered += grows[v] && plan.height(v, 1) < 0.2;
+    stopped += !grows[v];
+    const Vec3 expected = grows[v] ? c.top[v] + step[v] * d.n[v] : c.top[v];
+    EXPECT_TRUE(next[v] == expected) << v;
+  }
+  EXPECT_GT(turned, 0);
+  EXPECT_GT(lowered, 0);
+  EXPECT_GT(stopped, 0);
+}
+
 TEST(LayerAssembly, CellTypesFollowHowManyColumnsGrow) {
   const TriSurface wall = flat_grid(1);  // 4 points, 2 triangles (0,1,3) and (0,3,2)
   const WallTopology topo = build_wall_topology(wall);
