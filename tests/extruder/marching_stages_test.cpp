@@ -170,7 +170,9 @@ TEST(HeightSmoothing, FewOrManyLowSpotsSmoothExactlyAsPassesOverEveryPoint) {
       }
       EXPECT_EQ(differ, 0) << rings << " rings, " << low_spots << " low spots";
       EXPECT_LE(f[high], 1.0);  // lowered by its neighbour at least
-      if (low_spots > 0) EXPECT_GT(changed, low_spots / 2);
+      if (low_spots > 0) {
+        EXPECT_GT(changed, low_spots / 2);
+      }
     }
 }
 

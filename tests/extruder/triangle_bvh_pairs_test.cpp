@@ -448,7 +448,9 @@ TEST(TriangleBvhPairs, FewWantedTrianglesFindEveryPairOnce) {
       EXPECT_TRUE(between(*found, exact_self, loose_self)) << count << ": " << found->size() << " against " << exact_self.size();
     for (const Pairs* found : {&twin.pairs, &two_alone.pairs})
       EXPECT_TRUE(between(*found, exact_twin, loose_twin)) << count << ": " << found->size() << " against " << exact_twin.size();
-    if (count > 1) EXPECT_FALSE(exact_twin.empty()) << count;
+    if (count > 1) {
+      EXPECT_FALSE(exact_twin.empty()) << count;
+    }
     if (&wanted == &masks.front()) {  // the run: pairs of two wanted triangles, found from one side only
       int both = 0;
       for (const auto& [i, j] : exact_self) both += wanted[i] && wanted[j];
