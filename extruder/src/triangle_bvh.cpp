@@ -204,7 +204,15 @@ void TriangleBvh::refit_nodes() {
 }
 
 void TriangleBvh::mark_nodes(const std::vector<char>& wanted, std::vector<char>* node_wanted) const {
+  const int n = static_cast<int>(items_.size());
+  int count = 0;
+  for (int i = 0; i < n; ++i) count += wanted[i] != 0;
+  if (count > 0 && static_cast<std::int64_t>(count) * kFewWanted < n) {
+    node_wanted->clear();
+    return;
+  }
   node_wanted->assign(nodes_.size(), 0);
+  if (count == 0) return;
   // Preorder: a reverse sweep sees both children of a node before the node.
   for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i) {
     const Node& nd = nodes_[i];

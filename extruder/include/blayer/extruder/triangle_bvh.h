@@ -193,7 +193,9 @@ class TriangleBvh {
   int size() const { return static_cast<int>(items_.size()); }
 
   // Which nodes hold an item with wanted[item] != 0, for the pair traversals below
-  // (*node_wanted is resized to the node count).
+  // (*node_wanted is resized to the node count). Left empty when some but fewer than
+  // 1 in kFewWanted items are wanted: the traversals then search once per wanted item
+  // and read no marks.
   void mark_nodes(const std::vector<char>& wanted, std::vector<char>* node_wanted) const;
 
   // visit(i, j) for every item i of this tree with wanted[i] != 0 and every item j of
@@ -207,13 +209,16 @@ class TriangleBvh {
     // A pair is tested before it is pushed (only wanted, overlapping pairs are ever
     // popped): most pairs fail, and their push and pop cost more than the test.
     auto wanted_overlap = [&](int a, int b) { return node_wanted[a] && nodes_[a].box.overlaps(other.nodes_[b].box); };
-    if (nodes_.empty() || other.nodes_.empty() || !wanted_overlap(0, 0)) return;
-    if (for_each_wanted_leaf_if_few(wanted, [&](int i) {
-          other.for_each_leaf_overlapping(item_box_[i], [&](int j) {
-            if (!slabs_apart(i, other, j)) visit(items_[i], other.items_[j]);
-          });
-        }))
+    if (nodes_.empty() || other.nodes_.empty()) return;
+    if (node_wanted.empty()) {
+      for_each_wanted_leaf(wanted, [&](int i) {
+        other.for_each_leaf_overlapping(item_box_[i], [&](int j) {
+          if (!slabs_apart(i, other, j)) visit(items_[i], other.items_[j]);
+        });
+      });
       return;
+    }
+    if (!wanted_overlap(0, 0)) return;
     auto leaves = [&](const Node& a, const Node& b) {
       for (int i = a.first; i < a.first + a.count; ++i) {
         if (!wanted[items_[i]]) continue;
@@ -242,8 +247,12 @@ class TriangleBvh {
   template <class Visit>
   void for_each_overlapping_pair(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
                                  Visit&& visit) const {
-    if (nodes_.empty() || !node_wanted[0]) return;
-    if (for_each_wanted_leaf_if_few(wanted, [&](int i) { own_pairs_of_leaf(i, wanted, visit); })) return;
+    if (nodes_.empty()) return;
+    if (node_wanted.empty()) {
+      for_each_wanted_leaf(wanted, [&](int i) { own_pairs_of_leaf(i, wanted, visit); });
+      return;
+    }
+    if (!node_wanted[0]) return;
     auto pair = [&](int i, int j) {
       if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]) && !slabs_apart(i, *this, j))
         visit(items_[i], items_[j]);
@@ -293,14 +302,17 @@ class TriangleBvh {
     BLAYER_ASSERT_MSG(twin.nodes_.size() == nodes_.size() && twin.items_.size() == items_.size(),
                       "a twin tree has this tree's layout");
     BLAYER_EXPENSIVE_ASSERT(twin.items_ == items_);
-    if (nodes_.empty() || !node_wanted[0]) return;
-    if (for_each_wanted_leaf_if_few(wanted, [&](int i) {
-          own_pairs_of_leaf(i, wanted, visit_self);
-          twin.for_each_leaf_overlapping(item_box_[i], [&](int j) {
-            if (!slabs_apart(i, twin, j)) visit_twin(items_[i], twin.items_[j]);
-          });
-        }))
+    if (nodes_.empty()) return;
+    if (node_wanted.empty()) {
+      for_each_wanted_leaf(wanted, [&](int i) {
+        own_pairs_of_leaf(i, wanted, visit_self);
+        twin.for_each_leaf_overlapping(item_box_[i], [&](int j) {
+          if (!slabs_apart(i, twin, j)) visit_twin(items_[i], twin.items_[j]);
+        });
+      });
       return;
+    }
+    if (!node_wanted[0]) return;
     const std::vector<Node>& tn = twin.nodes_;
     // Item pairs at leaf positions i, j.
     auto self_pair = [&](int i, int j) {
@@ -385,28 +397,23 @@ class TriangleBvh {
     }
   }
 
-  // Below this share of wanted items (1 in kFewWanted), the pair traversals run one
-  // descent per wanted item instead of descending node pairs: the checker's repair
-  // attempts want a few hundred of the front's triangles, scattered, and the node pairs
-  // that lead to them are mostly pairs of their unwanted neighbours' nodes.
+  // Below this share of wanted items (1 in kFewWanted; mark_nodes decides), the pair
+  // traversals run one descent per wanted item instead of descending node pairs: the
+  // checker's repair attempts want a few hundred of the front's triangles, scattered,
+  // and the node pairs that lead to them are mostly pairs of their unwanted
+  // neighbours' nodes.
   static constexpr int kFewWanted = 32;
 
  private:
   // Node boxes from the item boxes.
   void refit_nodes();
 
-  // When fewer than 1 in kFewWanted items are wanted: at_wanted(i) for the leaf
-  // position i of every wanted item, in parallel, and true; else nothing and false.
+  // at_wanted(i) for the leaf position i of every wanted item, in parallel.
   template <class AtWanted>
-  bool for_each_wanted_leaf_if_few(const std::vector<char>& wanted, AtWanted&& at_wanted) const {
-    const int n = static_cast<int>(items_.size());
-    int count = 0;
-    for (int i = 0; i < n; ++i) count += wanted[i] != 0;
-    if (static_cast<std::int64_t>(count) * kFewWanted >= n) return false;
-    tbb::parallel_for(0, n, [&](int i) {
+  void for_each_wanted_leaf(const std::vector<char>& wanted, AtWanted&& at_wanted) const {
+    tbb::parallel_for(0, static_cast<int>(items_.size()), [&](int i) {
       if (wanted[items_[i]]) at_wanted(i);
     });
-    return true;
   }
 
   // visit(j) for the leaf position j of every item whose box overlaps b.
