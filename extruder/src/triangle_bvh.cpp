@@ -189,9 +189,24 @@ void TriangleBvh::refit(const std::vector<Box>& boxes) {
 }
 
 void TriangleBvh::refit_nodes() {
-  // Nodes are in preorder (children after their parent), so a reverse sweep sees both
-  // children of a node before the node itself.
-  for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i) {
+  if (!nodes_.empty()) refit_subtree(0, static_cast<int>(nodes_.size()));
+}
+
+// Nodes are in preorder: node i's subtree is [i, end), its left child i + 1 and its
+// right child i + 1 + left_nodes. Large subtrees refit their halves in parallel (a
+// union of float boxes is exact in any order); the others in a reverse sweep, which
+// sees both children of a node before the node itself.
+void TriangleBvh::refit_subtree(int root, int end) {
+  constexpr int kSerialNodes = 4096;
+  Node& top = nodes_[root];
+  if (top.count == 0 && end - root > kSerialNodes) {
+    const int right = top.first + top.left_nodes;
+    tbb::parallel_invoke([&] { refit_subtree(top.first, right); }, [&] { refit_subtree(right, end); });
+    top.box = nodes_[top.first].box;
+    top.box.unite(nodes_[right].box);
+    return;
+  }
+  for (int i = end - 1; i >= root; --i) {
     Node& nd = nodes_[i];
     if (nd.count > 0) {
       nd.box = item_box_[nd.first];

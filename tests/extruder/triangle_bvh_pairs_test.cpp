@@ -179,6 +179,32 @@ TEST(TriangleBvhPairs, TreesLargeEnoughToBeBuiltInParallelFindEveryOverlapOnce) 
   expect_same_pairs_as_brute_force(front, wall, random_mask(rng, static_cast<int>(front.size()), 0.02));
 }
 
+TEST(TriangleBvhPairs, LargeRefittedTreesFindTheNewOverlaps) {
+  // Past a few thousand nodes the refit runs on subtrees in parallel: the node boxes
+  // must still hold the new item boxes, for the node-pair descent and for the per-item
+  // search alike (both masks). The sheet moves as a whole, as a front does, so that a
+  // node box left out would miss items.
+  const std::vector<Box> wall = sheet_boxes(92, 0.0, 0.5);
+  std::vector<Box> moved = sheet_boxes(92, 0.3, 0.5);
+  for (Box& b : moved)
+    for (Vec3* corner : {&b.lo, &b.hi}) *corner = *corner + Vec3{3.7, -2.1, 0.0};
+  std::mt19937 rng(53);
+  TriangleBvh front, base;
+  front.build(wall);
+  front.refit(moved);
+  base.build(wall);
+  for (double share : {0.05, 0.01}) {
+    const std::vector<char> wanted = random_mask(rng, static_cast<int>(moved.size()), share);
+    std::vector<char> nodes;
+    front.mark_nodes(wanted, &nodes);
+    Visited two;
+    front.for_each_overlapping_pair(wanted, nodes, base, [&](int i, int j) { two.add(i, j); });
+    EXPECT_EQ(two.repeats, 0);
+    EXPECT_TRUE(between(two.pairs, brute_pairs(moved, wanted, wall), brute_pairs(grown(moved), wanted, grown(wall))))
+        << share << ": " << two.pairs.size() << " pairs against " << brute_pairs(moved, wanted, wall).size();
+  }
+}
+
 TEST(TriangleBvhPairs, MixedLongAndSmallBoxesFindEveryOverlapOnce) {
   // Long, thin boxes among small ones (trailing-edge slivers beside a fine mesh): the
   // case the surface-area split separates.

@@ -407,6 +407,8 @@ class TriangleBvh {
  private:
   // Node boxes from the item boxes.
   void refit_nodes();
+  // The same for the subtree of node root, whose nodes are [root, end).
+  void refit_subtree(int root, int end);
 
   // at_wanted(i) for the leaf position i of every wanted item, in parallel.
   template <class AtWanted>
