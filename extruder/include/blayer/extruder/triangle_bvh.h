@@ -261,28 +261,16 @@ class TriangleBvh {
     auto keep = [&](int a, int b, auto&& push) {
       if ((node_wanted[a] || node_wanted[b]) && (a == b || nodes_[a].box.overlaps(nodes_[b].box))) push(a, b);
     };
-    // A pair (a, b) with a == b stands for the pairs inside node a.
-    auto descend = [&](int a, int b, auto&& push) {
-      const Node& na = nodes_[a];
-      const Node& nb = nodes_[b];
-      if (a == b) {
-        if (na.count > 0) {
+    traverse_unordered_pairs(
+        keep,
+        [&](const Node& na) {
           for (int i = na.first; i < na.first + na.count; ++i)
             for (int j = i + 1; j < na.first + na.count; ++j) pair(i, j);
-        } else {
-          const int l = na.first, r = na.first + na.left_nodes;
-          keep(l, l, push);
-          keep(r, r, push);
-          keep(l, r, push);
-        }
-      } else if (na.count > 0 && nb.count > 0) {
-        for (int i = na.first; i < na.first + na.count; ++i)
-          for (int j = nb.first; j < nb.first + nb.count; ++j) pair(i, j);
-      } else {
-        split_pair(nodes_, a, nodes_, b, [&](int x, int y) { keep(x, y, push); });
-      }
-    };
-    traverse_pairs(descend);
+        },
+        [&](const Node& na, const Node& nb) {
+          for (int i = na.first; i < na.first + na.count; ++i)
+            for (int j = nb.first; j < nb.first + nb.count; ++j) pair(i, j);
+        });
   }
 
   // Both traversals above in one, against a twin: a tree of the same layout (a copy of
@@ -331,37 +319,23 @@ class TriangleBvh {
           (wb && nodes_[b].box.overlaps(tn[a].box)))
         push(a, b);
     };
-    auto descend = [&](int a, int b, auto&& push) {
-      const Node& na = nodes_[a];
-      const Node& nb = nodes_[b];
-      if (a == b) {
-        if (na.count > 0) {
+    auto both_pairs = [&](int i, int j) {
+      self_pair(i, j);
+      twin_pair(i, j);
+      twin_pair(j, i);
+    };
+    traverse_unordered_pairs(
+        keep,
+        [&](const Node& na) {
           for (int i = na.first; i < na.first + na.count; ++i) {
             twin_pair(i, i);
-            for (int j = i + 1; j < na.first + na.count; ++j) {
-              self_pair(i, j);
-              twin_pair(i, j);
-              twin_pair(j, i);
-            }
+            for (int j = i + 1; j < na.first + na.count; ++j) both_pairs(i, j);
           }
-        } else {
-          const int l = na.first, r = na.first + na.left_nodes;
-          keep(l, l, push);
-          keep(r, r, push);
-          keep(l, r, push);
-        }
-      } else if (na.count > 0 && nb.count > 0) {
-        for (int i = na.first; i < na.first + na.count; ++i)
-          for (int j = nb.first; j < nb.first + nb.count; ++j) {
-            self_pair(i, j);
-            twin_pair(i, j);
-            twin_pair(j, i);
-          }
-      } else {
-        split_pair(nodes_, a, nodes_, b, [&](int x, int y) { keep(x, y, push); });
-      }
-    };
-    traverse_pairs(descend);
+        },
+        [&](const Node& na, const Node& nb) {
+          for (int i = na.first; i < na.first + na.count; ++i)
+            for (int j = nb.first; j < nb.first + nb.count; ++j) both_pairs(i, j);
+        });
   }
 
   // visit(id, &t_max) for every item whose box the segment origin + t*dir, t in
@@ -450,6 +424,33 @@ class TriangleBvh {
   // extents (volumes would tie at 0 for the flat boxes of axis-aligned faces).
   static double extent(const FloatBox& b) {
     return (double{b.hi[0]} - b.lo[0]) + (double{b.hi[1]} - b.lo[1]) + (double{b.hi[2]} - b.lo[2]);
+  }
+
+  // The unordered node pairs {a, b} of this tree from (0, 0), a pair with a == b
+  // standing for the pairs inside node a: within(leaf) for the pairs inside a leaf,
+  // across(leaf, leaf) for two leaves, keep(x, y, push) pushing the child pairs worth
+  // descending.
+  template <class Keep, class Within, class Across>
+  void traverse_unordered_pairs(Keep&& keep, Within&& within, Across&& across) const {
+    auto descend = [&](int a, int b, auto&& push) {
+      const Node& na = nodes_[a];
+      const Node& nb = nodes_[b];
+      if (a == b) {
+        if (na.count > 0) {
+          within(na);
+        } else {
+          const int l = na.first, r = na.first + na.left_nodes;
+          keep(l, l, push);
+          keep(r, r, push);
+          keep(l, r, push);
+        }
+      } else if (na.count > 0 && nb.count > 0) {
+        across(na, nb);
+      } else {
+        split_pair(nodes_, a, nodes_, b, [&](int x, int y) { keep(x, y, push); });
+      }
+    };
+    traverse_pairs(descend);
   }
 
   // Node pairs from (0, 0): expanded breadth-first by descend(a, b, push) until there
