@@ -360,6 +360,29 @@ TEST(TriangleBvhPairs, TreesBeyondTheSlabLimitKeepNoSlabs) {
   EXPECT_TRUE(visits_the_slivers());
 }
 
+// The front after `cur`: each corner slid a little and lifted by less than a
+// triangle's size, at random, so that most triangles overlap several of `cur`'s.
+std::vector<Tri> next_front(const std::vector<Tri>& cur, std::mt19937& rng) {
+  std::vector<Tri> next = cur;
+  std::uniform_real_distribution<double> lift(0.03, 0.12), slide(-0.2, 0.2);
+  for (Tri& t : next)
+    for (Vec3& p : t) p = p + Vec3{slide(rng), slide(rng), lift(rng)};
+  return next;
+}
+
+// The pairs of a's twin traversal against b, and of the self and two-tree traversals
+// it stands for.
+struct TwinAndAlone {
+  Visited self, twin, self_alone, two_alone;
+};
+void traverse_three_ways(const TriangleBvh& a, const TriangleBvh& b, const std::vector<char>& wanted,
+                         const std::vector<char>& nodes, TwinAndAlone* v) {
+  auto unordered = [](Visited& into) { return [&into](int i, int j) { into.add(std::min(i, j), std::max(i, j)); }; };
+  a.for_each_overlapping_pair_with_twin(wanted, nodes, b, unordered(v->self), [&](int i, int j) { v->twin.add(i, j); });
+  a.for_each_overlapping_pair(wanted, nodes, unordered(v->self_alone));
+  a.for_each_overlapping_pair(wanted, nodes, b, [&](int i, int j) { v->two_alone.add(i, j); });
+}
+
 // The checker's new front against its current front, a copy of the same tree refitted
 // (TriangleBvh::for_each_overlapping_pair_with_twin): one descent must find exactly
 // the pairs of the self traversal and of the two-tree traversal, with and without
@@ -367,10 +390,7 @@ TEST(TriangleBvhPairs, TreesBeyondTheSlabLimitKeepNoSlabs) {
 TEST(TriangleBvhPairs, ATwinTraversalFindsTheSelfAndTwoTreePairsOnce) {
   std::mt19937 rng(37);
   const std::vector<Tri> cur = sliver_triangles(rng, 13, 0.0);
-  std::vector<Tri> next = cur;
-  std::uniform_real_distribution<double> lift(0.03, 0.12), slide(-0.2, 0.2);
-  for (Tri& t : next)
-    for (Vec3& p : t) p = p + Vec3{slide(rng), slide(rng), lift(rng)};
+  std::vector<Tri> next = next_front(cur, rng);
   auto corners_of = [](const std::vector<Tri>& t) {
     return [&t](int i, Vec3* c) { std::copy(t[i].begin(), t[i].end(), c); };
   };
@@ -384,16 +404,12 @@ TEST(TriangleBvhPairs, ATwinTraversalFindsTheSelfAndTwoTreePairsOnce) {
                                       const char* what) {
     std::vector<char> nodes;
     a.mark_nodes(wanted, &nodes);
-    Visited self, twin, self_alone, two_alone;
-    a.for_each_overlapping_pair_with_twin(
-        wanted, nodes, b, [&](int i, int j) { self.add(std::min(i, j), std::max(i, j)); },
-        [&](int i, int j) { twin.add(i, j); });
-    a.for_each_overlapping_pair(wanted, nodes, [&](int i, int j) { self_alone.add(std::min(i, j), std::max(i, j)); });
-    a.for_each_overlapping_pair(wanted, nodes, b, [&](int i, int j) { two_alone.add(i, j); });
-    EXPECT_EQ(self.repeats + twin.repeats, 0) << what;
-    EXPECT_EQ(self.pairs, self_alone.pairs) << what;
-    EXPECT_EQ(twin.pairs, two_alone.pairs) << what;
-    return std::make_pair(self.pairs, twin.pairs);
+    TwinAndAlone v;
+    traverse_three_ways(a, b, wanted, nodes, &v);
+    EXPECT_EQ(v.self.repeats + v.twin.repeats, 0) << what;
+    EXPECT_EQ(v.self.pairs, v.self_alone.pairs) << what;
+    EXPECT_EQ(v.twin.pairs, v.two_alone.pairs) << what;
+    return std::make_pair(v.self.pairs, v.twin.pairs);
   };
   for (double share : {1.0, 0.0, 0.2}) {
     const std::vector<char> wanted = random_mask(rng, static_cast<int>(next.size()), share);
@@ -433,10 +449,7 @@ TEST(TriangleBvhPairs, ATwinTraversalFindsTheSelfAndTwoTreePairsOnce) {
 TEST(TriangleBvhPairs, FewWantedTrianglesFindEveryPairOnce) {
   std::mt19937 rng(43);
   const std::vector<Tri> cur = sliver_triangles(rng, 20, 0.0);
-  std::vector<Tri> next = cur;
-  std::uniform_real_distribution<double> lift(0.03, 0.12), slide(-0.2, 0.2);
-  for (Tri& t : next)
-    for (Vec3& p : t) p = p + Vec3{slide(rng), slide(rng), lift(rng)};
+  const std::vector<Tri> next = next_front(cur, rng);
   const TriangleBvh current = slabbed_tree(cur);
   TriangleBvh fresh = current;
   fresh.refit_triangles([&](int i, Vec3* c) { std::copy(next[i].begin(), next[i].end(), c); });
@@ -460,12 +473,9 @@ TEST(TriangleBvhPairs, FewWantedTrianglesFindEveryPairOnce) {
     std::vector<char> nodes;
     fresh.mark_nodes(wanted, &nodes);
     EXPECT_EQ(nodes.empty(), count > 0) << count;  // no marks: the per-item search
-    Visited self, twin, self_alone, two_alone;
-    fresh.for_each_overlapping_pair_with_twin(
-        wanted, nodes, current, [&](int i, int j) { self.add(std::min(i, j), std::max(i, j)); },
-        [&](int i, int j) { twin.add(i, j); });
-    fresh.for_each_overlapping_pair(wanted, nodes, [&](int i, int j) { self_alone.add(std::min(i, j), std::max(i, j)); });
-    fresh.for_each_overlapping_pair(wanted, nodes, current, [&](int i, int j) { two_alone.add(i, j); });
+    TwinAndAlone v;
+    traverse_three_ways(fresh, current, wanted, nodes, &v);
+    const Visited &self = v.self, &twin = v.twin, &self_alone = v.self_alone, &two_alone = v.two_alone;
     EXPECT_EQ(self.repeats + twin.repeats + self_alone.repeats + two_alone.repeats, 0) << count;
     const Pairs exact_self = without_apart(brute_self_pairs(bn, wanted), next, next);
     const Pairs exact_twin = without_apart(brute_pairs(bn, wanted, bc), next, cur);
