@@ -278,11 +278,11 @@ class TriangleBvh {
   // checker's new and current fronts are. visit_self(i, j) for every unordered pair of
   // distinct items of this tree as the self traversal gives them, and visit_twin(i, j)
   // for every item i of this tree and j of the twin as the two-tree traversal gives
-  // them (i == j included). One descent of the node pairs {a, b} serves both, each
-  // unordered pair once for the twin's pairs in either order, where the two traversals
-  // descend the unordered pairs and then the ordered ones: on the perforated block's
-  // fronts the node pairs and their reads were most of the checks' traversal time.
-  // Thread-safe visits, no fixed order, as above.
+  // them (i == j included). One descent of the unordered node pairs {a, b} serves both
+  // kinds, the twin's pairs in either order, where the two traversals descend the
+  // unordered pairs and then the ordered ones: on the perforated block's fronts the
+  // node pairs and their reads were most of the checks' traversal time. Thread-safe
+  // visits, no fixed order, as above.
   template <class VisitSelf, class VisitTwin>
   void for_each_overlapping_pair_with_twin(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
                                            const TriangleBvh& twin, VisitSelf&& visit_self,
