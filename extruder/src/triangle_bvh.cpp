@@ -188,6 +188,18 @@ void TriangleBvh::refit(const std::vector<Box>& boxes) {
   refit_each([&](int item) { return boxes[item]; });
 }
 
+// Node i's box from its items' (a leaf) or its children's boxes.
+void TriangleBvh::refit_node(int i) {
+  Node& nd = nodes_[i];
+  if (nd.count > 0) {
+    nd.box = item_box_[nd.first];
+    for (int j = nd.first + 1; j < nd.first + nd.count; ++j) nd.box.unite(item_box_[j]);
+  } else {
+    nd.box = nodes_[nd.first].box;
+    nd.box.unite(nodes_[nd.first + nd.left_nodes].box);
+  }
+}
+
 void TriangleBvh::refit_nodes() {
   if (!nodes_.empty()) refit_subtree(0, static_cast<int>(nodes_.size()));
 }
@@ -202,20 +214,10 @@ void TriangleBvh::refit_subtree(int root, int end) {
   if (top.count == 0 && end - root > kSerialNodes) {
     const int right = top.first + top.left_nodes;
     tbb::parallel_invoke([&] { refit_subtree(top.first, right); }, [&] { refit_subtree(right, end); });
-    top.box = nodes_[top.first].box;
-    top.box.unite(nodes_[right].box);
+    refit_node(root);
     return;
   }
-  for (int i = end - 1; i >= root; --i) {
-    Node& nd = nodes_[i];
-    if (nd.count > 0) {
-      nd.box = item_box_[nd.first];
-      for (int j = nd.first + 1; j < nd.first + nd.count; ++j) nd.box.unite(item_box_[j]);
-    } else {
-      nd.box = nodes_[nd.first].box;
-      nd.box.unite(nodes_[nd.first + nd.left_nodes].box);
-    }
-  }
+  for (int i = end - 1; i >= root; --i) refit_node(i);
 }
 
 void TriangleBvh::mark_nodes(const std::vector<char>& wanted, std::vector<char>* node_wanted) const {

@@ -211,11 +211,7 @@ class TriangleBvh {
     auto wanted_overlap = [&](int a, int b) { return node_wanted[a] && nodes_[a].box.overlaps(other.nodes_[b].box); };
     if (nodes_.empty() || other.nodes_.empty()) return;
     if (node_wanted.empty()) {
-      for_each_wanted_leaf(wanted, [&](int i) {
-        other.for_each_leaf_overlapping(item_box_[i], [&](int j) {
-          if (!slabs_apart(i, other, j)) visit(items_[i], other.items_[j]);
-        });
-      });
+      for_each_wanted_leaf(wanted, [&](int i) { pairs_of_leaf_with(i, other, visit); });
       return;
     }
     if (!wanted_overlap(0, 0)) return;
@@ -254,8 +250,7 @@ class TriangleBvh {
     }
     if (!node_wanted[0]) return;
     auto pair = [&](int i, int j) {
-      if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]) && !slabs_apart(i, *this, j))
-        visit(items_[i], items_[j]);
+      if (own_pair_kept(i, j, wanted)) visit(items_[i], items_[j]);
     };
     // Pairs are tested before they are pushed, as above; a node always overlaps itself.
     auto keep = [&](int a, int b, auto&& push) {
@@ -294,9 +289,7 @@ class TriangleBvh {
     if (node_wanted.empty()) {
       for_each_wanted_leaf(wanted, [&](int i) {
         own_pairs_of_leaf(i, wanted, visit_self);
-        twin.for_each_leaf_overlapping(item_box_[i], [&](int j) {
-          if (!slabs_apart(i, twin, j)) visit_twin(items_[i], twin.items_[j]);
-        });
+        pairs_of_leaf_with(i, twin, visit_twin);
       });
       return;
     }
@@ -304,8 +297,7 @@ class TriangleBvh {
     const std::vector<Node>& tn = twin.nodes_;
     // Item pairs at leaf positions i, j.
     auto self_pair = [&](int i, int j) {
-      if ((wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]) && !slabs_apart(i, *this, j))
-        visit_self(items_[i], items_[j]);
+      if (own_pair_kept(i, j, wanted)) visit_self(items_[i], items_[j]);
     };
     auto twin_pair = [&](int i, int j) {
       if (wanted[items_[i]] && item_box_[i].overlaps(twin.item_box_[j]) && !slabs_apart(i, twin, j))
@@ -383,6 +375,7 @@ class TriangleBvh {
   void refit_nodes();
   // The same for the subtree of node root, whose nodes are [root, end).
   void refit_subtree(int root, int end);
+  void refit_node(int i);
 
   // at_wanted(i) for the leaf position i of every wanted item, in parallel.
   template <class AtWanted>
@@ -409,6 +402,21 @@ class TriangleBvh {
           if (nodes_[child].box.overlaps(b)) stack[top++] = child;
       }
     }
+  }
+
+  // Whether the self traversals visit the items at leaf positions i and j: one of them
+  // wanted, their boxes overlapping and their slabs (if any) not apart.
+  bool own_pair_kept(int i, int j, const std::vector<char>& wanted) const {
+    return (wanted[items_[i]] || wanted[items_[j]]) && item_box_[i].overlaps(item_box_[j]) && !slabs_apart(i, *this, j);
+  }
+
+  // visit(item at leaf position i, item of `other`) for every item of `other` whose box
+  // overlaps leaf position i's and whose slabs (if both have them) are not apart.
+  template <class Visit>
+  void pairs_of_leaf_with(int i, const TriangleBvh& other, Visit&& visit) const {
+    other.for_each_leaf_overlapping(item_box_[i], [&](int j) {
+      if (!slabs_apart(i, other, j)) visit(items_[i], other.items_[j]);
+    });
   }
 
   // The self traversal's pairs of wanted leaf position i: each unordered pair once, by
