@@ -16,8 +16,15 @@ namespace detail {
 // The triangles of the hull of f[0..k-1] (coplanar facets triangulated), wound with
 // their normals pointing out of the hull; a repeated point is named by one of its
 // indices. Returns false, leaving *facets empty, when the points span no volume (k < 4,
-// all coplanar) or a coordinate is not finite. Exact predicates.
+// all coplanar) or a coordinate is not finite. Exact predicates. Beneath-beyond in index
+// order with conflicts: each point is tested against the facets it may see, not against
+// every facet, in about O(k log k) tests.
 bool normal_hull_facets(const Vec3* f, int k, std::vector<std::array<int, 3>>* facets);
+
+// The same triangles (in another order) by the plain sweep: each point in index order
+// against every facet, O(k h) tests. The oracle of the tests, and the answer where the
+// conflicts meet a patch whose rim is not one cycle.
+bool normal_hull_facets_by_sweep(const Vec3* f, int k, std::vector<std::array<int, 3>>* facets);
 
 }  // namespace detail
 }  // namespace blayer

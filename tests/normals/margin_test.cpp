@@ -319,5 +319,66 @@ TEST(MostVisibleOnHull, MatchesTheEnumerationOnDegenerateSets) {
   expect_same_most_visible(circle, "small circle");
 }
 
+// Point sets for the hull's two constructions: general position, clusters (a fan
+// face's normals), the cube grid with repeats (points in facet planes, on edges and on
+// vertices), a cone of points on one circle, and the face normals and link directions
+// of CAD-like fans of valence 12 to 60.
+template <class Visit>
+void for_each_hull_case(Visit&& visit) {
+  std::mt19937 rng(41);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  for (int trial = 0; trial < 40; ++trial) {
+    std::vector<Vec3> f;
+    for (int i = 0; i < 5 + trial; ++i) {
+      Vec3 x{gauss(rng), gauss(rng), gauss(rng)};
+      if (trial % 2 == 1) x = Vec3{0.0, 0.0, 1.0} + 1e-3 * x;
+      f.push_back(normalized(x));
+    }
+    visit(f, "random trial " + std::to_string(trial));
+  }
+  std::vector<Vec3> grid;
+  for (int x = -1; x <= 1; ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z)
+        if (x != 0 || y != 0 || z != 0) grid.push_back({0.5 * x, 0.5 * y, 0.5 * z});
+  for (int trial = 0; trial < 30; ++trial) {
+    std::vector<Vec3> f = grid;
+    for (int r = 0; r < trial % 5; ++r) f.push_back(grid[static_cast<std::size_t>(r * 7) % grid.size()]);
+    std::shuffle(f.begin(), f.end(), rng);
+    visit(f, "cube grid trial " + std::to_string(trial));
+  }
+  std::vector<Vec3> cone{{0.0, 0.0, 1.0}};
+  for (int i = 0; i < 24; ++i)
+    cone.push_back({0.5 * std::cos(M_PI * i / 12.0), 0.5 * std::sin(M_PI * i / 12.0), -0.5});
+  visit(cone, "cone");
+  std::mt19937 fans(2029);
+  testing_fans::for_each_cad_fan(fans, {12, 24, 40, 60}, 2, [&](const FanGeometry& g, const std::string& label) {
+    visit(g.face_normals, label + " normals");
+    visit(g.dirs, label + " link");
+  });
+}
+
+// Each triangle turned to start at its smallest index (winding kept), all sorted.
+std::vector<std::array<int, 3>> canonical(std::vector<std::array<int, 3>> facets) {
+  for (std::array<int, 3>& t : facets) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  std::sort(facets.begin(), facets.end());
+  return facets;
+}
+
+// The conflicts add the same points at the same steps as the sweep, so they build the
+// same triangles, coplanar facets included.
+TEST(NormalHull, ConflictsBuildTheSweepsTriangles) {
+  int n = 0;
+  for_each_hull_case([&](const std::vector<Vec3>& f, const std::string& what) {
+    std::vector<std::array<int, 3>> fast, sweep;
+    const int k = static_cast<int>(f.size());
+    const bool built = detail::normal_hull_facets(f.data(), k, &fast);
+    ASSERT_EQ(built, detail::normal_hull_facets_by_sweep(f.data(), k, &sweep)) << what;
+    EXPECT_EQ(canonical(fast), canonical(sweep)) << what;
+    n += built;
+  });
+  EXPECT_GT(n, 250);
+}
+
 }  // namespace
 }  // namespace blayer
