@@ -180,6 +180,55 @@ class MarginSearch {
   MostVisibleResult best_;
 };
 
+// MarginSearch's answer with the candidates offered in any order: each names its place
+// in MarginSearch's order (rank, then + before - within it), and of equal margins the
+// earliest place wins, as the first offered does there. A margin is a minimum of the
+// same products whatever their order, so the faces named as hints (those that likely
+// hold the candidate's minimum: a facet's own corners for its inward normal) are tried
+// first, then the face that stopped the previous candidate, then all: the candidate is
+// abandoned as soon as it can no longer win, with the same answer.
+class RankedMarginSearch {
+ public:
+  RankedMarginSearch(const Vec3* f, int k) : f_(f), k_(k) {}
+  void consider(const Vec3& c, std::uint64_t rank, std::initializer_list<int> hints) {
+    const double len = norm(c);
+    if (!(len > 0.0)) return;
+    const Vec3 n[2] = {c / len, -c / len};
+    for (int sign = 0; sign < 2; ++sign) {
+      const std::uint64_t place = 2 * rank + static_cast<std::uint64_t>(sign);
+      // Still able to win with margin v: above the best, or equal to it and earlier.
+      auto can_win = [&](double v) { return v > best_v_ || (v == best_v_ && place < best_place_); };
+      double v = std::numeric_limits<double>::infinity();
+      for (int j : hints) v = std::min(v, dot(f_[j], n[sign]));
+      v = std::min(v, dot(f_[last_stop_], n[sign]));
+      for (int j = 0; j < k_ && can_win(v); ++j) {
+        v = std::min(v, dot(f_[j], n[sign]));
+        if (!can_win(v)) last_stop_ = j;
+      }
+      if (can_win(v)) {
+        best_v_ = v;
+        best_place_ = place;
+        best_n_ = n[sign];
+      }
+    }
+  }
+  MostVisibleResult result() const {
+    MostVisibleResult r;
+    r.normal = best_n_;
+    r.visibility = k_ == 1 ? 1.0 : best_v_;
+    r.feasible = false;
+    return r;
+  }
+
+ private:
+  const Vec3* f_;
+  int k_;
+  int last_stop_ = 0;
+  double best_v_ = -std::numeric_limits<double>::infinity();
+  std::uint64_t best_place_ = std::numeric_limits<std::uint64_t>::max();
+  Vec3 best_n_{0.0, 0.0, 0.0};
+};
+
 }  // namespace
 
 MostVisibleResult best_margin_direction_by_enumeration(const Vec3* f, int k) {
@@ -239,23 +288,28 @@ void hull_feature_keys(const std::vector<std::array<int, 3>>& facets, int n_vert
 // the hull's point nearest to the origin otherwise: a facet normal, or an edge's
 // midpoint f_a + f_b (the normals are unit; a vertex f_a is nearest only when every
 // normal equals it, which spans no volume). So the enumeration's candidates built from
-// the hull's edges and facets suffice; the vertices are offered too, and all in the
-// enumeration's order, so that the first of equal margins is the enumeration's unless
-// its winner was a candidate off the hull (equal to rounding).
+// the hull's edges and facets suffice; the vertices are offered too, each ranked by its
+// place in the enumeration's order, so that of equal margins the enumeration's first
+// wins unless its winner was a candidate off the hull (equal to rounding).
 MostVisibleResult best_margin_direction(const Vec3* f, int k) {
   thread_local std::vector<std::array<int, 3>> facets;
   if (!detail::normal_hull_facets(f, k, &facets)) return best_margin_direction_by_enumeration(f, k);
-  thread_local std::vector<std::array<int, 3>> keys;
-  hull_feature_keys(facets, k, &keys);
-  MarginSearch search(f, k);
-  for (const auto& [a, b, c] : keys) {
-    if (b < 0) {
-      search.consider(f[a]);
-    } else if (c < 0) {
-      search.consider(f[a] + f[b]);
-    } else {
-      search.consider(cross(f[b] - f[a], f[c] - f[a]));
+  // The candidates in any order, ranked as hull_feature_keys sorts them: every vertex,
+  // each edge once (from the facet that runs it upwards), each facet by its sorted
+  // corners.
+  auto rank = [](int a, int b, int c) {
+    return (std::uint64_t(a + 1) << 42) | (std::uint64_t(b + 1) << 21) | std::uint64_t(c + 1);
+  };
+  RankedMarginSearch search(f, k);
+  for (int a = 0; a < k; ++a) search.consider(f[a], rank(a, -1, -1), {a});
+  for (std::array<int, 3> t : facets) {
+    for (int e = 0; e < 3; ++e) {
+      const int u = t[e], v = t[(e + 1) % 3];
+      if (u < v) search.consider(f[u] + f[v], rank(u, v, -1), {u, v});
     }
+    std::sort(t.begin(), t.end());
+    if (t[0] == t[1] || t[1] == t[2]) continue;
+    search.consider(cross(f[t[1]] - f[t[0]], f[t[2]] - f[t[0]]), rank(t[0], t[1], t[2]), {t[0], t[1], t[2]});
   }
   return search.result();
 }

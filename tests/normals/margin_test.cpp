@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <string>
 #include <vector>
@@ -376,6 +377,46 @@ TEST(NormalHull, ConflictsBuildTheSweepsTriangles) {
     ASSERT_EQ(built, detail::normal_hull_facets_by_sweep(f.data(), k, &sweep)) << what;
     EXPECT_EQ(canonical(fast), canonical(sweep)) << what;
     n += built;
+  });
+  EXPECT_GT(n, 250);
+}
+
+// best_margin_direction offers the hull's features in any order; its answer is, to the
+// bit, that of offering them in the enumeration's order (vertices, edges and facets by
+// sorted indices, + before -) and keeping the first of equal margins. The cube grid and
+// the cone hold exact ties between facets.
+TEST(BestMargin, OfEqualMarginsTheFirstInTheEnumerationsOrderWins) {
+  int n = 0;
+  for_each_hull_case([&](const std::vector<Vec3>& f, const std::string& what) {
+    const int k = static_cast<int>(f.size());
+    std::vector<std::array<int, 3>> facets;
+    if (!detail::normal_hull_facets_by_sweep(f.data(), k, &facets)) return;
+    std::vector<std::array<int, 3>> keys;
+    for (int a = 0; a < k; ++a) keys.push_back({a, -1, -1});
+    for (std::array<int, 3> t : facets) {
+      std::sort(t.begin(), t.end());
+      keys.push_back(t);
+      keys.push_back({t[0], t[1], -1});
+      keys.push_back({t[0], t[2], -1});
+      keys.push_back({t[1], t[2], -1});
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    double best = -INFINITY;
+    Vec3 best_n{0.0, 0.0, 0.0};
+    for (const auto& [a, b, c] : keys) {
+      const Vec3 x = b < 0 ? f[a] : c < 0 ? f[a] + f[b] : cross(f[b] - f[a], f[c] - f[a]);
+      if (!(norm(x) > 0.0)) continue;
+      for (const Vec3& dir : {x / norm(x), -x / norm(x)}) {
+        double v = INFINITY;
+        for (const Vec3& g : f) v = std::min(v, dot(g, dir));
+        if (v > best) best = v, best_n = dir;
+      }
+    }
+    const MostVisibleResult r = best_margin_direction(f.data(), k);
+    EXPECT_EQ(r.visibility, best) << what;
+    EXPECT_EQ(r.normal, best_n) << what;
+    ++n;
   });
   EXPECT_GT(n, 250);
 }
