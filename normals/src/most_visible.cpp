@@ -247,29 +247,28 @@ MostVisibleResult best_margin_direction_by_enumeration(const Vec3* f, int k) {
 
 namespace {
 
-// The features of a triangulated hull keyed (a, b, c) as the enumeration over every
-// vertex, pair and triple meets them: a vertex (a, -1, -1), an edge (a, b, -1), a facet
-// (a, b, c), a < b < c, sorted and distinct (-1 sorts first). The first n_vertices
-// vertices are listed whether on the hull or not (0 for the hull's own only).
-void hull_feature_keys(const std::vector<std::array<int, 3>>& facets, int n_vertices,
-                       std::vector<std::array<int, 3>>* keys) {
-  // Sorted as integers, (a + 1, b + 1, c + 1) packed into 21 bits each: the same order
-  // as the triples' (ids are below 2^21 - 1), at a fraction of the comparisons' cost.
-  auto pack = [](int a, int b, int c) {
-    return (std::uint64_t(a + 1) << 42) | (std::uint64_t(b + 1) << 21) | std::uint64_t(c + 1);
-  };
+// A hull feature's place in the order in which the enumeration over every vertex, pair
+// and triple meets it: a vertex (a, -1, -1), an edge (a, b, -1), a facet (a, b, c),
+// a < b < c, ordered as triples (-1 first). As an integer, (a + 1, b + 1, c + 1) packed
+// into 21 bits each: the same order (ids are below 2^21 - 1), at a fraction of the
+// comparisons' cost.
+std::uint64_t feature_rank(int a, int b, int c) {
+  return (std::uint64_t(a + 1) << 42) | (std::uint64_t(b + 1) << 21) | std::uint64_t(c + 1);
+}
+
+// The features of a triangulated hull, as (a, b, c) keys in the enumeration's order,
+// distinct.
+void hull_feature_keys(const std::vector<std::array<int, 3>>& facets, std::vector<std::array<int, 3>>* keys) {
   thread_local std::vector<std::uint64_t> packed;
   packed.clear();
-  for (int a = 0; a < n_vertices; ++a) packed.push_back(pack(a, -1, -1));
   for (std::array<int, 3> t : facets) {
     std::sort(t.begin(), t.end());
     if (t[0] == t[1] || t[1] == t[2]) continue;
-    for (const std::uint64_t key : {pack(t[0], t[1], t[2]), pack(t[0], t[1], -1), pack(t[0], t[2], -1),
-                                    pack(t[1], t[2], -1)})
+    for (const std::uint64_t key :
+         {feature_rank(t[0], t[1], t[2]), feature_rank(t[0], t[1], -1), feature_rank(t[0], t[2], -1),
+          feature_rank(t[1], t[2], -1), feature_rank(t[0], -1, -1), feature_rank(t[1], -1, -1),
+          feature_rank(t[2], -1, -1)})
       packed.push_back(key);
-    // Hull vertices below n_vertices are listed already.
-    for (const int a : t)
-      if (a >= n_vertices) packed.push_back(pack(a, -1, -1));
   }
   std::sort(packed.begin(), packed.end());
   packed.erase(std::unique(packed.begin(), packed.end()), packed.end());
@@ -294,22 +293,18 @@ void hull_feature_keys(const std::vector<std::array<int, 3>>& facets, int n_vert
 MostVisibleResult best_margin_direction(const Vec3* f, int k) {
   thread_local std::vector<std::array<int, 3>> facets;
   if (!detail::normal_hull_facets(f, k, &facets)) return best_margin_direction_by_enumeration(f, k);
-  // The candidates in any order, ranked as hull_feature_keys sorts them: every vertex,
-  // each edge once (from the facet that runs it upwards), each facet by its sorted
-  // corners.
-  auto rank = [](int a, int b, int c) {
-    return (std::uint64_t(a + 1) << 42) | (std::uint64_t(b + 1) << 21) | std::uint64_t(c + 1);
-  };
+  // The candidates in any order, each with its feature_rank: every vertex, each edge
+  // once (from the facet that runs it upwards), each facet by its sorted corners.
   RankedMarginSearch search(f, k);
-  for (int a = 0; a < k; ++a) search.consider(f[a], rank(a, -1, -1), {a});
+  for (int a = 0; a < k; ++a) search.consider(f[a], feature_rank(a, -1, -1), {a});
   for (std::array<int, 3> t : facets) {
     for (int e = 0; e < 3; ++e) {
       const int u = t[e], v = t[(e + 1) % 3];
-      if (u < v) search.consider(f[u] + f[v], rank(u, v, -1), {u, v});
+      if (u < v) search.consider(f[u] + f[v], feature_rank(u, v, -1), {u, v});
     }
     std::sort(t.begin(), t.end());
     if (t[0] == t[1] || t[1] == t[2]) continue;
-    search.consider(cross(f[t[1]] - f[t[0]], f[t[2]] - f[t[0]]), rank(t[0], t[1], t[2]), {t[0], t[1], t[2]});
+    search.consider(cross(f[t[1]] - f[t[0]], f[t[2]] - f[t[0]]), feature_rank(t[0], t[1], t[2]), {t[0], t[1], t[2]});
   }
   return search.result();
 }
@@ -388,7 +383,7 @@ MostVisibleResult most_visible_on_hull(const Vec3* f, int k, const Tolerances& t
   // In the enumeration's order, so that the first of equal |q| is the enumeration's
   // unless its winner was a support off the hull (equal to rounding).
   thread_local std::vector<std::array<int, 3>> keys;
-  hull_feature_keys(facets, 0, &keys);
+  hull_feature_keys(facets, &keys);
   SupportSearch search(u);
   for (const auto& [a, b, c] : keys) {
     if (b < 0) {
