@@ -60,15 +60,21 @@ void simplex_facets(const Vec3* f, const int* s, std::vector<Facet>* out) {
 
 bool is_simplex_point(const int* s, int p) { return p == s[0] || p == s[1] || p == s[2] || p == s[3]; }
 
+// Whether the points have a hull with volume: at least four, finite (the exact predicate
+// assumes finite coordinates), not all on one plane; *s receives the first simplex.
+bool spans_volume(const Vec3* f, int k, int* s) {
+  if (k < 4) return false;
+  for (int i = 0; i < k; ++i)
+    if (!is_finite(f[i])) return false;
+  return initial_simplex(f, k, s);
+}
+
 }  // namespace
 
 bool normal_hull_facets_by_sweep(const Vec3* f, int k, std::vector<std::array<int, 3>>* facets) {
   facets->clear();
-  if (k < 4) return false;
-  for (int i = 0; i < k; ++i)
-    if (!is_finite(f[i])) return false;  // the exact predicate assumes finite coordinates
   int s[4];
-  if (!initial_simplex(f, k, s)) return false;
+  if (!spans_volume(f, k, s)) return false;
   thread_local std::vector<Facet> start;
   thread_local std::vector<HullFacet> hull, kept;
   simplex_facets(f, s, &start);
@@ -121,19 +127,14 @@ class ConflictHull {
 
  private:
   struct Node {
-    Facet t;
-    PlaneSides plane;
+    HullFacet facet;
     std::array<int, 3> across;  // the facet beyond edge (t[e], t[e + 1])
     int points = -1;            // the first point filed under it
     bool alive = true;
-    Node(const Vec3* f, const Facet& facet) : t(facet), plane(f[facet[0]], f[facet[1]], f[facet[2]]) {}
+    Node(const Vec3* f, const Facet& t) : facet(f, t) {}
   };
 
-  bool sees(int facet, int p) const {
-    const Node& n = nodes_[facet];
-    const int sign = n.plane.filter(f_[p]);
-    return (sign != 0 ? sign : orient3d_sign(f_[n.t[0]], f_[n.t[1]], f_[n.t[2]], f_[p])) > 0;
-  }
+  bool sees(int facet, int p) const { return nodes_[facet].facet.seen_by(f_, p); }
   void file(int p, int facet) {
     next_point_[p] = nodes_[facet].points;
     nodes_[facet].points = p;
@@ -146,7 +147,7 @@ class ConflictHull {
     facet_of_[p] = -1;
   }
   int edge_towards(int facet, int u, int v) const {
-    const Facet& t = nodes_[facet].t;
+    const Facet& t = nodes_[facet].facet.t;
     for (int e = 0; e < 3; ++e)
       if (t[e] == u && t[(e + 1) % 3] == v) return e;
     return -1;
@@ -157,7 +158,7 @@ class ConflictHull {
   int k_ = 0;
   std::vector<Node> nodes_;
   std::vector<int> facet_of_, next_point_;
-  std::vector<int> patch_, stack_, mark_;
+  std::vector<int> patch_, mark_;
   std::vector<std::array<int, 3>> rim_;  // u, v, the facet beyond: the patch's rim edges
   std::vector<int> from_, to_;           // per point: the new facet whose rim edge starts / ends there
   int stamp_ = 0;
@@ -174,7 +175,8 @@ bool ConflictHull::build(const Vec3* f, int k, const int* s, std::vector<std::ar
   for (const Facet& t : start) nodes_.emplace_back(f_, t);
   for (int a = 0; a < 4; ++a)
     for (int e = 0; e < 3; ++e) {
-      const int u = nodes_[a].t[e], v = nodes_[a].t[(e + 1) % 3];
+      const Facet& t = nodes_[a].facet.t;
+      const int u = t[e], v = t[(e + 1) % 3];
       for (int b = 0; b < 4; ++b)
         if (b != a && edge_towards(b, v, u) >= 0) nodes_[a].across[e] = b;
     }
@@ -188,7 +190,7 @@ bool ConflictHull::build(const Vec3* f, int k, const int* s, std::vector<std::ar
     if (facet_of_[p] >= 0 && !add(p)) return false;
   out->clear();
   for (const Node& n : nodes_)
-    if (n.alive) out->push_back(n.t);
+    if (n.alive) out->push_back(n.facet.t);
   return true;
 }
 
@@ -209,7 +211,7 @@ bool ConflictHull::add(int p) {
         patch_.push_back(b);
       } else {
         mark_[b] = -stamp_;
-        rim_.push_back({nodes_[a].t[e], nodes_[a].t[(e + 1) % 3], b});
+        rim_.push_back({nodes_[a].facet.t[e], nodes_[a].facet.t[(e + 1) % 3], b});
       }
     }
   }
@@ -227,7 +229,7 @@ bool ConflictHull::add(int p) {
     nodes_[id].across[0] = beyond;
   }
   for (int id = first_new; id < static_cast<int>(nodes_.size()); ++id) {
-    const int u = nodes_[id].t[0], v = nodes_[id].t[1];
+    const int u = nodes_[id].facet.t[0], v = nodes_[id].facet.t[1];
     if (from_[v] < first_new || to_[u] < first_new) return false;
     nodes_[id].across[1] = from_[v];  // edge (v, p): the new facet leaving v
     nodes_[id].across[2] = to_[u];    // edge (p, u): the new facet arriving at u
@@ -250,11 +252,8 @@ bool ConflictHull::add(int p) {
 
 bool normal_hull_facets(const Vec3* f, int k, std::vector<std::array<int, 3>>* facets) {
   facets->clear();
-  if (k < 4) return false;
-  for (int i = 0; i < k; ++i)
-    if (!is_finite(f[i])) return false;  // the exact predicate assumes finite coordinates
   int s[4];
-  if (!initial_simplex(f, k, s)) return false;
+  if (!spans_volume(f, k, s)) return false;
   thread_local ConflictHull hull;
   if (hull.build(f, k, s, facets)) return true;
   return normal_hull_facets_by_sweep(f, k, facets);

@@ -142,42 +142,55 @@ void expect_closed_hull(const std::vector<Vec3>& f, const std::string& what) {
   }
 }
 
-// Points in general position and CAD-like clusters.
-TEST(NormalHull, TrianglesCloseTheHullWoundOutwards) {
-  std::mt19937 rng(31);
+// k unit points in general position, or (cluster) within about 1e-3 of +z, as a fan
+// face's normals.
+std::vector<Vec3> random_points(std::mt19937& rng, int k, bool cluster) {
   std::normal_distribution<double> gauss(0.0, 1.0);
-  for (int trial = 0; trial < 40; ++trial) {
-    std::vector<Vec3> f;
-    const int k = 5 + trial;
-    for (int i = 0; i < k; ++i) {
-      Vec3 x{gauss(rng), gauss(rng), gauss(rng)};
-      if (trial % 2 == 1) x = Vec3{0.0, 0.0, 1.0} + 1e-3 * x;  // a cluster, as a fan face's normals
-      f.push_back(normalized(x));
-    }
-    expect_closed_hull(f, "trial " + std::to_string(trial));
+  std::vector<Vec3> f;
+  for (int i = 0; i < k; ++i) {
+    Vec3 x{gauss(rng), gauss(rng), gauss(rng)};
+    if (cluster) x = Vec3{0.0, 0.0, 1.0} + 1e-3 * x;
+    f.push_back(normalized(x));
   }
+  return f;
 }
 
-// Exactly coplanar points on the facets (a cube's corners, face centres, edge midpoints
-// and repeats, shuffled), so that points land in facet planes, on edges and on vertices
-// as the hull grows; and a cone of points on one circle around an apex.
-TEST(NormalHull, TrianglesCloseTheHullOfCoplanarAndRepeatedPoints) {
-  std::mt19937 rng(8);
+// A cube's corners, face centres and edge midpoints, with `repeats` of them twice,
+// shuffled: points land in facet planes, on edges and on vertices as the hull grows.
+std::vector<Vec3> cube_grid(std::mt19937& rng, int repeats) {
   std::vector<Vec3> grid;
   for (int x = -1; x <= 1; ++x)
     for (int y = -1; y <= 1; ++y)
       for (int z = -1; z <= 1; ++z)
         if (x != 0 || y != 0 || z != 0) grid.push_back({0.5 * x, 0.5 * y, 0.5 * z});
-  for (int trial = 0; trial < 30; ++trial) {
-    std::vector<Vec3> f = grid;
-    for (int r = 0; r < trial % 5; ++r) f.push_back(grid[static_cast<std::size_t>(r * 7) % grid.size()]);
-    std::shuffle(f.begin(), f.end(), rng);
-    expect_closed_hull(f, "cube grid, trial " + std::to_string(trial));
-  }
+  std::vector<Vec3> f = grid;
+  for (int r = 0; r < repeats; ++r) f.push_back(grid[static_cast<std::size_t>(r * 7) % grid.size()]);
+  std::shuffle(f.begin(), f.end(), rng);
+  return f;
+}
+
+// An apex over 24 points on one circle.
+std::vector<Vec3> cone_points() {
   std::vector<Vec3> cone{{0.0, 0.0, 1.0}};
   for (int i = 0; i < 24; ++i)
     cone.push_back({0.5 * std::cos(M_PI * i / 12.0), 0.5 * std::sin(M_PI * i / 12.0), -0.5});
-  expect_closed_hull(cone, "cone");
+  return cone;
+}
+
+// Points in general position and CAD-like clusters.
+TEST(NormalHull, TrianglesCloseTheHullWoundOutwards) {
+  std::mt19937 rng(31);
+  for (int trial = 0; trial < 40; ++trial)
+    expect_closed_hull(random_points(rng, 5 + trial, trial % 2 == 1), "trial " + std::to_string(trial));
+}
+
+// Exactly coplanar points on the facets and repeats, and a cone of points on one circle
+// around an apex.
+TEST(NormalHull, TrianglesCloseTheHullOfCoplanarAndRepeatedPoints) {
+  std::mt19937 rng(8);
+  for (int trial = 0; trial < 30; ++trial)
+    expect_closed_hull(cube_grid(rng, trial % 5), "cube grid, trial " + std::to_string(trial));
+  expect_closed_hull(cone_points(), "cone");
 }
 
 // The face normals of CAD-like fans of valence 12 to 60 (thin fan triangles: many nearly
@@ -327,31 +340,10 @@ TEST(MostVisibleOnHull, MatchesTheEnumerationOnDegenerateSets) {
 template <class Visit>
 void for_each_hull_case(Visit&& visit) {
   std::mt19937 rng(41);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  for (int trial = 0; trial < 40; ++trial) {
-    std::vector<Vec3> f;
-    for (int i = 0; i < 5 + trial; ++i) {
-      Vec3 x{gauss(rng), gauss(rng), gauss(rng)};
-      if (trial % 2 == 1) x = Vec3{0.0, 0.0, 1.0} + 1e-3 * x;
-      f.push_back(normalized(x));
-    }
-    visit(f, "random trial " + std::to_string(trial));
-  }
-  std::vector<Vec3> grid;
-  for (int x = -1; x <= 1; ++x)
-    for (int y = -1; y <= 1; ++y)
-      for (int z = -1; z <= 1; ++z)
-        if (x != 0 || y != 0 || z != 0) grid.push_back({0.5 * x, 0.5 * y, 0.5 * z});
-  for (int trial = 0; trial < 30; ++trial) {
-    std::vector<Vec3> f = grid;
-    for (int r = 0; r < trial % 5; ++r) f.push_back(grid[static_cast<std::size_t>(r * 7) % grid.size()]);
-    std::shuffle(f.begin(), f.end(), rng);
-    visit(f, "cube grid trial " + std::to_string(trial));
-  }
-  std::vector<Vec3> cone{{0.0, 0.0, 1.0}};
-  for (int i = 0; i < 24; ++i)
-    cone.push_back({0.5 * std::cos(M_PI * i / 12.0), 0.5 * std::sin(M_PI * i / 12.0), -0.5});
-  visit(cone, "cone");
+  for (int trial = 0; trial < 40; ++trial)
+    visit(random_points(rng, 5 + trial, trial % 2 == 1), "random trial " + std::to_string(trial));
+  for (int trial = 0; trial < 30; ++trial) visit(cube_grid(rng, trial % 5), "cube grid trial " + std::to_string(trial));
+  visit(cone_points(), "cone");
   std::mt19937 fans(2029);
   testing_fans::for_each_cad_fan(fans, {12, 24, 40, 60}, 2, [&](const FanGeometry& g, const std::string& label) {
     visit(g.face_normals, label + " normals");
