@@ -113,7 +113,9 @@ namespace {
 // The hull of normal_hull_facets with conflicts: every point not added yet is filed
 // under one facet it sees, or under none once it lies inside (the hull only grows, so
 // it stays inside). Adding a point removes the facets it sees, found from its own facet
-// across their edges (they form one patch), and files the points of the removed facets
+// across their edges (they form one patch: seen from inside, the facets a point sees are
+// the vertices of the polar polytope beyond one plane, and those are joined by its
+// edges, as the simplex method's walk shows), and files the points of the removed facets
 // under the new ones. That is exact: a point above a removed facet that sees none of the
 // new ones lies inside the grown hull (a point above the removed facet's plane and
 // outside the hull leaves the hull through the part of its surface above that plane,
