@@ -130,7 +130,7 @@ class ConflictHull {
  private:
   struct Node {
     HullFacet facet;
-    std::array<int, 3> across;  // the facet beyond edge (t[e], t[e + 1])
+    std::array<int, 3> across{-1, -1, -1};  // the facet beyond edge (t[e], t[e + 1])
     int points = -1;            // the first point filed under it
     bool alive = true;
     Node(const Vec3* f, const Facet& t) : facet(f, t) {}
