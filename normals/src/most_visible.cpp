@@ -148,48 +148,16 @@ MostVisibleResult finish_feasible(const Vec3* f, int k, const Vec3& q, int suppo
 namespace {
 
 // The largest margin min_j n.f_j among the candidate directions offered, each in both
-// signs; the first of equal margins is kept.
+// signs. Each candidate names its place in the enumeration's order (its rank, then +
+// before - within it), so that it may be offered in any order: of equal margins the
+// earliest place wins. A margin is a minimum of the same products whatever their
+// order, so the faces named as hints (those that likely hold the candidate's minimum:
+// a facet's own corners for its inward normal) are tried first, then the face that
+// stopped the previous candidate, then all: the candidate is abandoned as soon as it
+// can no longer win, with the same answer.
 class MarginSearch {
  public:
-  MarginSearch(const Vec3* f, int k) : f_(f), k_(k) { best_.visibility = -std::numeric_limits<double>::infinity(); }
-  void consider(const Vec3& c) {
-    const double len = norm(c);
-    if (!(len > 0.0)) return;
-    for (const Vec3& n : {c / len, -c / len}) {
-      // Only a strictly larger margin replaces the best, so a candidate is abandoned as
-      // soon as one face reaches the best margin: the same answer, at a fraction of the
-      // cost (one face suffices for most candidates).
-      double v = std::numeric_limits<double>::infinity();
-      for (int j = 0; j < k_ && v > best_.visibility; ++j) v = std::min(v, dot(f_[j], n));
-      if (v > best_.visibility) {
-        best_.visibility = v;
-        best_.normal = n;
-      }
-    }
-  }
-  MostVisibleResult result() const {
-    MostVisibleResult r = best_;
-    if (k_ == 1) r.visibility = 1.0;
-    r.feasible = false;
-    return r;
-  }
-
- private:
-  const Vec3* f_;
-  int k_;
-  MostVisibleResult best_;
-};
-
-// MarginSearch's answer with the candidates offered in any order: each names its place
-// in MarginSearch's order (rank, then + before - within it), and of equal margins the
-// earliest place wins, as the first offered does there. A margin is a minimum of the
-// same products whatever their order, so the faces named as hints (those that likely
-// hold the candidate's minimum: a facet's own corners for its inward normal) are tried
-// first, then the face that stopped the previous candidate, then all: the candidate is
-// abandoned as soon as it can no longer win, with the same answer.
-class RankedMarginSearch {
- public:
-  RankedMarginSearch(const Vec3* f, int k) : f_(f), k_(k) {}
+  MarginSearch(const Vec3* f, int k) : f_(f), k_(k) {}
   void consider(const Vec3& c, std::uint64_t rank, std::initializer_list<int> hints) {
     const double len = norm(c);
     if (!(len > 0.0)) return;
@@ -233,13 +201,14 @@ class RankedMarginSearch {
 
 MostVisibleResult best_margin_direction_by_enumeration(const Vec3* f, int k) {
   MarginSearch search(f, k);
+  std::uint64_t rank = 0;  // the candidates come in the enumeration's order
   for (int a = 0; a < k; ++a) {
-    search.consider(f[a]);
+    search.consider(f[a], rank++, {a});
     for (int b = a + 1; b < k; ++b) {
-      search.consider(f[a] + f[b]);
+      search.consider(f[a] + f[b], rank++, {a, b});
       // A great circle through both normals: the margin directions of a flat hull.
-      search.consider(cross(f[a], f[b]));
-      for (int c = b + 1; c < k; ++c) search.consider(cross(f[b] - f[a], f[c] - f[a]));
+      search.consider(cross(f[a], f[b]), rank++, {a, b});
+      for (int c = b + 1; c < k; ++c) search.consider(cross(f[b] - f[a], f[c] - f[a]), rank++, {a, b, c});
     }
   }
   return search.result();
@@ -295,7 +264,7 @@ MostVisibleResult best_margin_direction(const Vec3* f, int k) {
   if (!detail::normal_hull_facets(f, k, &facets)) return best_margin_direction_by_enumeration(f, k);
   // The candidates in any order, each with its feature_rank: every vertex, each edge
   // once (from the facet that runs it upwards), each facet by its sorted corners.
-  RankedMarginSearch search(f, k);
+  MarginSearch search(f, k);
   for (int a = 0; a < k; ++a) search.consider(f[a], feature_rank(a, -1, -1), {a});
   for (std::array<int, 3> t : facets) {
     for (int e = 0; e < 3; ++e) {
