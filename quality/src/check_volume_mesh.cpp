@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -52,36 +53,58 @@ void check_structure(const VolumeMesh& mesh) {
 // A face of a cell as global node ids, in canonical form: `cyclic` starts at the
 // smallest node and continues in the direction whose next node is smaller; `reversed`
 // says that this is against the cell's outward winding. `sorted` is the node set.
-struct FaceKey {
-  int n = 0;
-  std::array<std::int64_t, 4> cyclic{-1, -1, -1, -1};
-  std::array<std::int64_t, 4> sorted{-1, -1, -1, -1};
-  bool reversed = false;
+// A face of a cell as integers that compare in one or two instructions. A face is
+// filed in the bucket of its smallest node id m (bucket_faces), so its keys hold the
+// ids after m, each padded to three with kNoId and packed two to a word (ids are
+// non-negative 32-bit values, check_structure, so a packed pair compares as the pair
+// does): `sorted` the node set, with the node count; `cyclic` the ids around the face
+// from m, in the direction whose next id is the smaller (for a quad the opposite node
+// is then third: a crossed quad on the same nodes differs there); `reversed` whether
+// that direction runs against the face's winding. Where m occurs twice in a degenerate
+// face, its first place starts both readings.
+constexpr std::uint32_t kNoId = 0xffffffffu;
+
+struct FaceEntry {
+  std::array<std::uint64_t, 2> sorted;
+  std::array<std::uint64_t, 2> cyclic;
+  std::int64_t cell;
+  std::uint8_t face;
+  std::uint8_t n;
+  bool reversed;
 };
 
-FaceKey face_key(const VolumeMesh& mesh, std::int64_t cell, int face) {
+std::array<std::uint64_t, 2> pack_ids(const std::uint32_t* ids, int n) {
+  return {std::uint64_t{ids[0]} << 32 | ids[1], std::uint64_t(n) << 32 | ids[2]};
+}
+
+FaceEntry face_entry(const VolumeMesh& mesh, std::int64_t cell, int face) {
   const detail::FaceDef& fd = detail::cell_faces(mesh.cell_types[cell]).faces[face];
   const PointId* nodes = mesh.cell_nodes(cell);
-  FaceKey k;
-  k.n = fd.n;
-  std::array<std::int64_t, 4> v{};
+  const int n = fd.n;
+  std::uint32_t v[4];
   int lo = 0;
-  for (int i = 0; i < fd.n; ++i) {
-    v[i] = nodes[fd.v[i]];
+  for (int i = 0; i < n; ++i) {
+    v[i] = static_cast<std::uint32_t>(nodes[fd.v[i]]);
     if (v[i] < v[lo]) lo = i;
   }
-  std::array<std::int64_t, 4> fwd{-1, -1, -1, -1}, bwd{-1, -1, -1, -1};
-  for (int i = 0; i < fd.n; ++i) {
-    fwd[i] = v[cyclic_wrap(lo + i, fd.n)];
-    bwd[i] = v[cyclic_wrap(lo - i, fd.n)];
+  std::uint32_t fwd[3] = {kNoId, kNoId, kNoId}, bwd[3] = {kNoId, kNoId, kNoId};
+  for (int i = 1; i < n; ++i) {
+    fwd[i - 1] = v[cyclic_wrap(lo + i, n)];
+    bwd[i - 1] = v[cyclic_wrap(lo - i, n)];
   }
-  k.reversed = bwd < fwd;
-  k.cyclic = k.reversed ? bwd : fwd;
-  k.sorted = k.cyclic;
-  // Insertion sort of the 3 or 4 ids (the -1 padding of a triangle stays last).
-  for (int i = 1; i < fd.n && i < 4; ++i)
-    for (int j = i; j > 0 && k.sorted[j] < k.sorted[j - 1]; --j) std::swap(k.sorted[j], k.sorted[j - 1]);
-  return k;
+  FaceEntry e;
+  e.cell = cell;
+  e.face = static_cast<std::uint8_t>(face);
+  e.n = static_cast<std::uint8_t>(n);
+  const std::array<std::uint64_t, 2> f = pack_ids(fwd, n), b = pack_ids(bwd, n);
+  e.reversed = b < f;
+  e.cyclic = e.reversed ? b : f;
+  // Sorting network of three (the padding, the largest value, stays last).
+  if (fwd[1] < fwd[0]) std::swap(fwd[0], fwd[1]);
+  if (fwd[2] < fwd[1]) std::swap(fwd[1], fwd[2]);
+  if (fwd[1] < fwd[0]) std::swap(fwd[0], fwd[1]);
+  e.sorted = pack_ids(fwd, n);
+  return e;
 }
 
 struct FaceCounters {
@@ -129,13 +152,7 @@ FaceBuckets bucket_faces(const VolumeMesh& mesh) {
   return b;
 }
 
-struct BucketEntry {
-  FaceKey key;
-  std::int64_t cell;
-  int face;
-};
-
-bool same_face(const BucketEntry& a, const BucketEntry& b) { return a.key.n == b.key.n && a.key.sorted == b.key.sorted; }
+bool same_face(const FaceEntry& a, const FaceEntry& b) { return a.sorted == b.sorted; }
 
 // Face matching: fills flags (atomic bit-or), upper_neighbour and the counters.
 void match_faces(const VolumeMesh& mesh, std::atomic<std::uint8_t>* flags, std::vector<std::int64_t>& upper,
@@ -147,27 +164,22 @@ void match_faces(const VolumeMesh& mesh, std::atomic<std::uint8_t>* flags, std::
 
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n_points, 1024), [&](const auto& r) {
     FaceCounters& fc = counters.local();
-    std::vector<BucketEntry> entries;
+    std::vector<FaceEntry> entries;
     for (std::size_t m = r.begin(); m < r.end(); ++m) {
       entries.clear();
-      for (std::int64_t i = b.start[m]; i < b.start[m + 1]; ++i) {
-        const auto cell = static_cast<std::int64_t>(b.records[i] / 8);
-        const int face = static_cast<int>(b.records[i] % 8);
-        entries.push_back({face_key(mesh, cell, face), cell, face});
-      }
-      // Sorting makes the grouping (and so the result) independent of the fill order.
-      std::sort(entries.begin(), entries.end(), [](const BucketEntry& x, const BucketEntry& y) {
-        if (x.key.n != y.key.n) return x.key.n < y.key.n;
-        if (x.key.sorted != y.key.sorted) return x.key.sorted < y.key.sorted;
-        if (x.key.cyclic != y.key.cyclic) return x.key.cyclic < y.key.cyclic;
-        return x.cell < y.cell;
-      });
+      for (std::int64_t i = b.start[m]; i < b.start[m + 1]; ++i)
+        entries.push_back(face_entry(mesh, static_cast<std::int64_t>(b.records[i] / 8), static_cast<int>(b.records[i] % 8)));
+      // Equal node sets become neighbours. What follows depends only on the groups, not
+      // on the order within or between them: counts add up, flags are or-ed, and each
+      // cell's top cap lies in one group.
+      std::sort(entries.begin(), entries.end(),
+                [](const FaceEntry& x, const FaceEntry& y) { return x.sorted < y.sorted; });
       for (std::size_t g = 0; g < entries.size();) {
         std::size_t e = g + 1;
         while (e < entries.size() && same_face(entries[g], entries[e])) ++e;
         const std::size_t size = e - g;
         bool same_cyclic = true;
-        for (std::size_t i = g + 1; i < e; ++i) same_cyclic = same_cyclic && entries[i].key.cyclic == entries[g].key.cyclic;
+        for (std::size_t i = g + 1; i < e; ++i) same_cyclic = same_cyclic && entries[i].cyclic == entries[g].cyclic;
         if (!same_cyclic) {
           ++fc.non_conforming;
           for (std::size_t i = g; i < e; ++i) mark(entries[i].cell, CellCheckFlag::kNonConforming);
@@ -175,9 +187,9 @@ void match_faces(const VolumeMesh& mesh, std::atomic<std::uint8_t>* flags, std::
           ++fc.overshared;
           for (std::size_t i = g; i < e; ++i) mark(entries[i].cell, CellCheckFlag::kOversharedFace);
         } else if (size == 2) {
-          const BucketEntry& x = entries[g];
-          const BucketEntry& y = entries[g + 1];
-          if (x.key.reversed == y.key.reversed) {
+          const FaceEntry& x = entries[g];
+          const FaceEntry& y = entries[g + 1];
+          if (x.reversed == y.reversed) {
             ++fc.misoriented;
             mark(x.cell, CellCheckFlag::kMisorientedFace);
             mark(y.cell, CellCheckFlag::kMisorientedFace);
@@ -187,21 +199,28 @@ void match_faces(const VolumeMesh& mesh, std::atomic<std::uint8_t>* flags, std::
             if (x.face == cx.top_cap && y.face == cy.bottom_cap) upper[x.cell] = y.cell;
             if (y.face == cy.top_cap && x.face == cx.bottom_cap) upper[y.cell] = x.cell;
           }
-        } else if (entries[g].key.n == 4) {
+        } else if (entries[g].n == 4) {
           // An unmatched quad: look for triangles on three of its nodes in the buckets
-          // of those triangles' smallest nodes.
-          const BucketEntry& q = entries[g];
+          // of those triangles' smallest nodes. The quad's nodes are m and, ascending,
+          // rest[0..2]; without m the smallest is rest[0].
+          const FaceEntry& q = entries[g];
+          const std::uint32_t rest[3] = {static_cast<std::uint32_t>(q.sorted[0] >> 32),
+                                         static_cast<std::uint32_t>(q.sorted[0]), static_cast<std::uint32_t>(q.sorted[1])};
           std::size_t found = 0;
-          for (int skip = 0; skip < 4; ++skip) {
-            std::array<std::int64_t, 4> tri{-1, -1, -1, -1};
-            for (int i = 0, j = 0; i < 4; ++i)
-              if (i != skip) tri[j++] = q.key.sorted[i];
-            const auto tm = static_cast<std::size_t>(tri[0]);
+          for (int skip = -1; skip < 3; ++skip) {
+            // The triangle's bucket, and its ids after that bucket's node.
+            std::uint32_t tri_rest[3] = {kNoId, kNoId, kNoId};
+            for (int i = 0, j = 0; i < 3; ++i)
+              if (i != skip) tri_rest[j++] = rest[i];
+            const std::size_t tm = skip < 0 ? tri_rest[0] : m;
+            const std::array<std::uint64_t, 2> want =
+                skip < 0 ? pack_ids(std::array<std::uint32_t, 3>{tri_rest[1], tri_rest[2], kNoId}.data(), 3)
+                         : pack_ids(tri_rest, 3);
             for (std::int64_t i = b.start[tm]; i < b.start[tm + 1]; ++i) {
               const auto cell = static_cast<std::int64_t>(b.records[i] / 8);
               const int face = static_cast<int>(b.records[i] % 8);
               if (cell == q.cell || detail::cell_faces(mesh.cell_types[cell]).faces[face].n != 3) continue;
-              if (face_key(mesh, cell, face).sorted != tri) continue;
+              if (face_entry(mesh, cell, face).sorted != want) continue;
               ++found;
               mark(cell, CellCheckFlag::kNonConforming);
             }

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <random>
+#include <utility>
 #include <vector>
 
 #include "blayer/core/errors.h"
@@ -233,6 +235,169 @@ TEST(MeshCheck, CrossedQuadWithTheSameNodesIsNonConforming) {
   const MeshCheckReport r = check_volume_mesh(m);
   EXPECT_TRUE(has_flag(r.flags[0], CellCheckFlag::kNonConforming));
   EXPECT_TRUE(has_flag(r.flags[1], CellCheckFlag::kNonConforming));
+}
+
+// Face matching by brute force, from the rules of mesh_check.h: faces grouped by node
+// set; a group whose faces are not all one cyclic sequence (up to rotation and
+// reversal) is non-conforming, one of more than two faces overshared, two faces read
+// in the same direction misoriented, two read in opposite directions conforming (a
+// top cap against a bottom cap makes an upper neighbour); a lone quad with triangles
+// of other cells on three of its nodes is non-conforming with each of them, and any
+// other lone face is boundary. Only for faces whose nodes are distinct.
+struct FaceOracle {
+  std::size_t boundary = 0, non_conforming = 0, overshared = 0, misoriented = 0;
+  std::vector<std::uint8_t> flags;
+  std::vector<std::int64_t> upper;
+};
+
+// Outward right-hand windings of the VTK cells' faces; for a wedge and a hex, face 0 is
+// the bottom cap and face 1 the top cap.
+std::vector<std::vector<int>> outward_faces(CellType t) {
+  switch (t) {
+    case CellType::kTet: return {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+    case CellType::kPyramid: return {{0, 3, 2, 1}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+    case CellType::kWedge: return {{0, 1, 2}, {3, 5, 4}, {0, 3, 4, 1}, {1, 4, 5, 2}, {2, 5, 3, 0}};
+    case CellType::kHex:
+      return {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  }
+  return {};
+}
+
+// Whether b is a rotation of a.
+bool rotation_of(const std::vector<std::int64_t>& a, const std::vector<std::int64_t>& b) {
+  for (std::size_t r = 0; r < a.size(); ++r) {
+    bool same = true;
+    for (std::size_t i = 0; i < a.size(); ++i) same = same && b[i] == a[(i + r) % a.size()];
+    if (same) return true;
+  }
+  return false;
+}
+
+FaceOracle brute_force_faces(const VolumeMesh& m) {
+  struct Face {
+    std::int64_t cell;
+    int face;
+    std::vector<std::int64_t> nodes, set;
+  };
+  std::vector<Face> faces;
+  for (std::size_t c = 0; c < m.n_cells(); ++c) {
+    const std::vector<std::vector<int>> fs = outward_faces(m.cell_types[c]);
+    for (std::size_t f = 0; f < fs.size(); ++f) {
+      Face x{static_cast<std::int64_t>(c), static_cast<int>(f), {}, {}};
+      for (int v : fs[f]) x.nodes.push_back(m.cell_nodes(c)[v]);
+      x.set = x.nodes;
+      std::sort(x.set.begin(), x.set.end());
+      faces.push_back(x);
+    }
+  }
+  FaceOracle o;
+  o.flags.assign(m.n_cells(), 0);
+  o.upper.assign(m.n_cells(), -1);
+  auto mark = [&](std::int64_t c, CellCheckFlag f) { o.flags[c] |= static_cast<std::uint8_t>(f); };
+  std::vector<char> grouped(faces.size(), 0);
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    if (grouped[i]) continue;
+    std::vector<std::size_t> group;
+    for (std::size_t j = i; j < faces.size(); ++j)
+      if (faces[j].set == faces[i].set) {
+        group.push_back(j);
+        grouped[j] = 1;
+      }
+    const Face& a = faces[i];
+    std::vector<std::int64_t> reversed_a(a.nodes.rbegin(), a.nodes.rend());
+    bool one_sequence = true;
+    for (std::size_t j : group) one_sequence = one_sequence && (rotation_of(a.nodes, faces[j].nodes) || rotation_of(reversed_a, faces[j].nodes));
+    if (!one_sequence) {
+      ++o.non_conforming;
+      for (std::size_t j : group) mark(faces[j].cell, CellCheckFlag::kNonConforming);
+    } else if (group.size() > 2) {
+      ++o.overshared;
+      for (std::size_t j : group) mark(faces[j].cell, CellCheckFlag::kOversharedFace);
+    } else if (group.size() == 2) {
+      const Face& b = faces[group[1]];
+      if (rotation_of(a.nodes, b.nodes)) {
+        ++o.misoriented;
+        mark(a.cell, CellCheckFlag::kMisorientedFace);
+        mark(b.cell, CellCheckFlag::kMisorientedFace);
+      } else {
+        auto capped = [&](CellType t) { return t == CellType::kWedge || t == CellType::kHex; };
+        for (const auto& [x, y] : {std::pair{&a, &b}, std::pair{&b, &a}})
+          if (capped(m.cell_types[x->cell]) && capped(m.cell_types[y->cell]) && x->face == 1 && y->face == 0)
+            o.upper[x->cell] = y->cell;
+      }
+    } else if (a.nodes.size() == 4) {
+      std::size_t found = 0;
+      for (const Face& t : faces)
+        if (t.cell != a.cell && t.nodes.size() == 3 &&
+            std::includes(a.set.begin(), a.set.end(), t.set.begin(), t.set.end())) {
+          ++found;
+          mark(t.cell, CellCheckFlag::kNonConforming);
+        }
+      if (found > 0) {
+        mark(a.cell, CellCheckFlag::kNonConforming);
+        o.non_conforming += 1 + found;
+      } else {
+        ++o.boundary;
+      }
+    } else {
+      ++o.boundary;
+    }
+  }
+  return o;
+}
+
+TEST(MeshCheck, FaceMatchingAgreesWithABruteForceMatcherOnRandomCellSoups) {
+  // Cells on a few shared nodes, so that faces meet in every way: repeated, reversed,
+  // crossed, quads over triangles; and stacked wedges and hexes for the upper
+  // neighbours. Geometry does not enter the matching.
+  std::mt19937 rng(20261206);
+  const CellType types[4] = {CellType::kTet, CellType::kPyramid, CellType::kWedge, CellType::kHex};
+  std::size_t totals[4] = {0, 0, 0, 0}, uppers = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const int n_points = 6 + static_cast<int>(rng() % 6);
+    VolumeMesh m;
+    for (int i = 0; i < n_points; ++i) m.points.push_back({double(i), double(i * i % 7), double(i % 3)});
+    std::vector<std::int64_t> pool(n_points);
+    for (int i = 0; i < n_points; ++i) pool[i] = i;
+    const int n_cells = 1 + static_cast<int>(rng() % 10);
+    for (int c = 0; c < n_cells; ++c) {
+      const CellType t = types[rng() % 4];
+      std::shuffle(pool.begin(), pool.end(), rng);
+      const int k = corner_count(t);
+      if (k > n_points) continue;
+      m.add_cell(t, pool.data());
+      if ((t == CellType::kWedge || t == CellType::kHex) && rng() % 2 == 0) {
+        // The next cell up: its bottom cap is this cell's top cap read the other way;
+        // its top on this cell's bottom nodes, in any order.
+        std::vector<std::int64_t> up(pool.begin() + k / 2, pool.begin() + k);
+        std::vector<std::int64_t> top(pool.begin(), pool.begin() + k / 2);
+        std::shuffle(top.begin(), top.end(), rng);
+        up.insert(up.end(), top.begin(), top.end());
+        m.add_cell(t, up.data());
+      }
+    }
+    const MeshCheckReport r = check_volume_mesh(m, CheckSummaries::kMinMax);
+    const FaceOracle o = brute_force_faces(m);
+    ASSERT_EQ(r.boundary_faces, o.boundary) << trial;
+    ASSERT_EQ(r.non_conforming_faces, o.non_conforming) << trial;
+    ASSERT_EQ(r.overshared_faces, o.overshared) << trial;
+    ASSERT_EQ(r.misoriented_faces, o.misoriented) << trial;
+    const std::uint8_t face_bits = static_cast<std::uint8_t>(CellCheckFlag::kNonConforming) |
+                                   static_cast<std::uint8_t>(CellCheckFlag::kOversharedFace) |
+                                   static_cast<std::uint8_t>(CellCheckFlag::kMisorientedFace);
+    for (std::size_t c = 0; c < m.n_cells(); ++c) {
+      ASSERT_EQ(r.flags[c] & face_bits, o.flags[c]) << trial << " cell " << c;
+      ASSERT_EQ(r.upper_neighbour[c], o.upper[c]) << trial << " cell " << c;
+      uppers += o.upper[c] >= 0;
+    }
+    totals[0] += o.boundary;
+    totals[1] += o.non_conforming;
+    totals[2] += o.overshared;
+    totals[3] += o.misoriented;
+  }
+  // Every kind of face occurred (else the comparison proved little).
+  for (std::size_t t : totals) EXPECT_GT(t, 50u);
+  EXPECT_GT(uppers, 50u);
 }
 
 TEST(MeshCheck, StructuralErrorsThrowInputError) {
