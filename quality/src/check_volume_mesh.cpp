@@ -50,9 +50,6 @@ void check_structure(const VolumeMesh& mesh) {
   }
 }
 
-// A face of a cell as global node ids, in canonical form: `cyclic` starts at the
-// smallest node and continues in the direction whose next node is smaller; `reversed`
-// says that this is against the cell's outward winding. `sorted` is the node set.
 // A face of a cell as integers that compare in one or two instructions. A face is
 // filed in the bucket of its smallest node id m (bucket_faces), so its keys hold the
 // ids after m, each padded to three with kNoId and packed two to a word (ids are
