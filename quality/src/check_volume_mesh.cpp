@@ -66,8 +66,8 @@ struct FaceEntry {
   std::array<std::uint64_t, 2> cyclic;
   std::int64_t cell;
   std::uint8_t face;
-  std::uint8_t n;
   bool reversed;
+  int node_count() const { return static_cast<int>(sorted[1] >> 32); }
 };
 
 std::array<std::uint64_t, 2> pack_ids(const std::uint32_t* ids, int n) {
@@ -92,7 +92,6 @@ FaceEntry face_entry(const VolumeMesh& mesh, std::int64_t cell, int face) {
   FaceEntry e;
   e.cell = cell;
   e.face = static_cast<std::uint8_t>(face);
-  e.n = static_cast<std::uint8_t>(n);
   const std::array<std::uint64_t, 2> f = pack_ids(fwd, n), b = pack_ids(bwd, n);
   e.reversed = b < f;
   e.cyclic = e.reversed ? b : f;
@@ -196,7 +195,7 @@ void match_faces(const VolumeMesh& mesh, std::atomic<std::uint8_t>* flags, std::
             if (x.face == cx.top_cap && y.face == cy.bottom_cap) upper[x.cell] = y.cell;
             if (y.face == cy.top_cap && x.face == cx.bottom_cap) upper[y.cell] = x.cell;
           }
-        } else if (entries[g].n == 4) {
+        } else if (entries[g].node_count() == 4) {
           // An unmatched quad: look for triangles on three of its nodes in the buckets
           // of those triangles' smallest nodes. The quad's nodes are m and, ascending,
           // rest[0..2]; without m the smallest is rest[0].
@@ -205,14 +204,13 @@ void match_faces(const VolumeMesh& mesh, std::atomic<std::uint8_t>* flags, std::
                                          static_cast<std::uint32_t>(q.sorted[0]), static_cast<std::uint32_t>(q.sorted[1])};
           std::size_t found = 0;
           for (int skip = -1; skip < 3; ++skip) {
-            // The triangle's bucket, and its ids after that bucket's node.
-            std::uint32_t tri_rest[3] = {kNoId, kNoId, kNoId};
+            // The triangle's ids other than m (skip < 0: all three, m skipped), padded;
+            // without m its bucket is its smallest id, and its key holds the other two.
+            std::uint32_t tri[4] = {kNoId, kNoId, kNoId, kNoId};
             for (int i = 0, j = 0; i < 3; ++i)
-              if (i != skip) tri_rest[j++] = rest[i];
-            const std::size_t tm = skip < 0 ? tri_rest[0] : m;
-            const std::array<std::uint64_t, 2> want =
-                skip < 0 ? pack_ids(std::array<std::uint32_t, 3>{tri_rest[1], tri_rest[2], kNoId}.data(), 3)
-                         : pack_ids(tri_rest, 3);
+              if (i != skip) tri[j++] = rest[i];
+            const std::size_t tm = skip < 0 ? tri[0] : m;
+            const std::array<std::uint64_t, 2> want = pack_ids(skip < 0 ? tri + 1 : tri, 3);
             for (std::int64_t i = b.start[tm]; i < b.start[tm + 1]; ++i) {
               const auto cell = static_cast<std::int64_t>(b.records[i] / 8);
               const int face = static_cast<int>(b.records[i] % 8);
