@@ -22,6 +22,7 @@
 
 #include "blayer/extruder/diagonal_slabs.h"
 #include "blayer/extruder/triangle_bvh.h"
+#include "blayer/extruder/unit_vector_box.h"
 
 namespace blayer {
 namespace {
@@ -224,6 +225,59 @@ TEST(TriangleBvhPairs, MixedLongAndSmallBoxesFindEveryOverlapOnce) {
   const std::vector<Box> b = random_boxes(rng, 500);
   expect_same_pairs_as_brute_force(a, b, std::vector<char>(a.size(), 1));
   expect_same_pairs_as_brute_force(a, b, random_mask(rng, static_cast<int>(a.size()), 0.3));
+}
+
+// A node filter on value boxes (node_value_boxes) prunes only node pairs whose items
+// all pass its test: here unit vectors near +x or -x by quarters of the space (as a
+// front's normals agree locally), a few NaN, and the filter drops node
+// pairs whose vectors all have positive dot products (dot_positive_throughout). Every
+// pair whose vectors' dot product is not positive must still come; of the others, which
+// are pairs within one quarter, most (three quarters here) do not.
+TEST(TriangleBvhPairs, ANodeFilterOnValueBoxesDropsOnlyPairsItsValuesRuleOut) {
+  std::mt19937 rng(41);
+  std::normal_distribution<double> g;
+  const std::vector<Box> a = random_boxes(rng, 1500), b = random_boxes(rng, 1200);
+  auto values_of = [&](const std::vector<Box>& boxes) {
+    std::vector<Vec3> v;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      const double side = (boxes[i].lo[0] < 5.0) == (boxes[i].lo[1] < 7.0) ? 1.0 : -1.0;
+      v.push_back(i % 97 == 5 ? Vec3{std::nan(""), 0.0, 0.0}
+                              : normalized(Vec3{side, 0.3 * g(rng), 0.3 * g(rng)}));
+    }
+    return v;
+  };
+  const std::vector<Vec3> va = values_of(a), vb = values_of(b);
+  TriangleBvh ta, tb;
+  ta.build(a);
+  tb.build(b);
+  std::vector<UnitVectorBox> boxes_a, boxes_b;
+  ta.node_value_boxes([&](int i) { return va[i]; }, &boxes_a);
+  tb.node_value_boxes([&](int j) { return vb[j]; }, &boxes_b);
+  const std::vector<char> wanted(a.size(), 1);
+  std::vector<char> nodes;
+  ta.mark_nodes(wanted, &nodes);
+  Visited two;
+  ta.for_each_overlapping_pair(
+      wanted, nodes, tb, [&](int i, int j) { two.add(i, j); },
+      [&](int x, int y) { return !dot_positive_throughout(boxes_a[x], boxes_b[y]); });
+  EXPECT_EQ(two.repeats, 0);
+  int needed = 0, missed = 0, positive = 0, positive_visited = 0;
+  for (const auto& [i, j] : brute_pairs(a, wanted, b)) {
+    const bool came = two.pairs.count({i, j}) > 0;
+    if (dot(va[i], vb[j]) > 0.0) {
+      ++positive;
+      positive_visited += came;
+    } else {
+      ++needed;
+      missed += !came;
+    }
+  }
+  const Pairs loose = brute_pairs(grown(a), wanted, grown(b));
+  EXPECT_TRUE(std::includes(loose.begin(), loose.end(), two.pairs.begin(), two.pairs.end()));
+  EXPECT_EQ(missed, 0) << "of " << needed << " pairs whose dot product is not positive";
+  EXPECT_GT(needed, 500);
+  EXPECT_GT(positive, 500);
+  EXPECT_LT(positive_visited * 2, positive) << positive_visited << " of " << positive << " positive pairs visited";
 }
 
 // Triangles as the extruder's CAD fronts have them: slivers across the axes (each a

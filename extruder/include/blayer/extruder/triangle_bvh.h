@@ -189,6 +189,28 @@ class TriangleBvh {
   }
 
   bool empty() const { return nodes_.empty(); }
+
+  // Per node, a box of another value of its items (unit normals, directions):
+  // (*out)[n] = the union of ValueBox::of(value_of(item)) over the items below node n,
+  // ValueBox having empty(), of() and unite() as UnitVectorBox has. The bounds of node
+  // pair filters (for_each_overlapping_pair); valid until the next build or join.
+  template <class ValueOf, class ValueBox>
+  void node_value_boxes(ValueOf&& value_of, std::vector<ValueBox>* out) const {
+    out->resize(nodes_.size());
+    // Preorder: a reverse sweep sees both children of a node before the node.
+    for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i) {
+      const Node& nd = nodes_[i];
+      ValueBox& b = (*out)[i];
+      if (nd.count > 0) {
+        b = ValueBox::empty();
+        for (int j = nd.first; j < nd.first + nd.count; ++j) b.unite(ValueBox::of(value_of(items_[j])));
+      } else {
+        b = (*out)[nd.first];
+        b.unite((*out)[nd.first + nd.left_nodes]);
+      }
+    }
+  }
+
   // The number of items the tree was built over.
   int size() const { return static_cast<int>(items_.size()); }
 
@@ -206,9 +228,20 @@ class TriangleBvh {
   template <class Visit>
   void for_each_overlapping_pair(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
                                  const TriangleBvh& other, Visit&& visit) const {
+    for_each_overlapping_pair(wanted, node_wanted, other, visit, [](int, int) { return true; });
+  }
+  // The same, where node_pair_may_visit(a, b) (node a of this tree, b of `other`) may
+  // also rule out every pair below a node pair: it returns false only where visit would
+  // do nothing with any of them (node_value_boxes gives such filters their bounds). It
+  // is a shortcut only, not applied when the search runs once per wanted item.
+  template <class Visit, class NodeFilter>
+  void for_each_overlapping_pair(const std::vector<char>& wanted, const std::vector<char>& node_wanted,
+                                 const TriangleBvh& other, Visit&& visit, NodeFilter&& node_pair_may_visit) const {
     // A pair is tested before it is pushed (only wanted, overlapping pairs are ever
     // popped): most pairs fail, and their push and pop cost more than the test.
-    auto wanted_overlap = [&](int a, int b) { return node_wanted[a] && nodes_[a].box.overlaps(other.nodes_[b].box); };
+    auto wanted_overlap = [&](int a, int b) {
+      return node_wanted[a] && nodes_[a].box.overlaps(other.nodes_[b].box) && node_pair_may_visit(a, b);
+    };
     if (nodes_.empty() || other.nodes_.empty()) return;
     if (node_wanted.empty()) {
       for_each_wanted_leaf(wanted, [&](int i) { pairs_of_leaf_with(i, other, visit); });
