@@ -173,7 +173,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
   TriSurface front;
   front.triangles = start.triangles;
   std::vector<Vec3> next(start.points.size());
-  TriangleBvh ray_tree;  // the proximity rays' segments, refitted from layer to layer
+  RaySegments ray_tree;  // the proximity rays' segments, refitted from layer to layer
   rep.t_setup = phase.seconds();
 
   for (int k = 0; k < rep.growth.layers; ++k) {
@@ -224,7 +224,7 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
   // memory, which is reached while the output arrays are filled.
   checker.release();
   wall_tree->reset();
-  ray_tree = TriangleBvh{};
+  ray_tree = RaySegments{};
 
   phase.restart();
   res.mesh = assembler.take_mesh();

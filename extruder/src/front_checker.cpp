@@ -235,6 +235,7 @@ ProximityRays FrontChecker::front_rays() const {
     r.front_points = cur_points_;
     r.front_tree = &cur_tree_;
     r.front_normal = &cur_normal_;
+    r.front_normal_boxes = &cur_normal_boxes_;
   }
   return r;
 }
@@ -253,6 +254,7 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
         for (int i = 0; i < 3; ++i) c[i] = top[front_[f][i]];
       });
     unit_triangle_normals(front_, top, &cur_normal_);
+    cur_tree_.node_value_boxes([&](int f) { return cur_normal_[f]; }, &cur_normal_boxes_);
   }
   if (check_collisions_) {
     std::copy(top.begin(), top.end(), soup_.begin() + nv_);
@@ -500,6 +502,7 @@ void FrontChecker::release() {
   release(cur_tris_);
   release(new_tris_);
   release(cur_normal_);
+  release(cur_normal_boxes_);
   own_wall_.reset();
   wall_ = nullptr;
   release(cur_tree_);

@@ -98,7 +98,7 @@ void stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnSt
 
 void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& topo, const WallPlanes& planes,
                         const StepDirections& d, const ExtrusionParams& p, ColumnPlan* plan, ColumnState* columns,
-                        TriangleBvh* ray_tree) {
+                        RaySegments* ray_tree) {
   const int nv = columns->size();
   const std::vector<char> active = growing(*columns);
   // The column's allowed total as a fraction of its target: what it has grown plus

@@ -23,6 +23,7 @@ WallTree::WallTree(const TriSurface& wall) {
     for (int i = 0; i < 3; ++i) c[i] = wall.points[wall.triangles[f][i]];
   });
   unit_triangle_normals(wall.triangles, wall.points, &normal);
+  tree.node_value_boxes([&](int f) { return normal[f]; }, &normal_boxes);
 }
 
 ProximityRays wall_proximity_rays(const std::vector<Triangle>& triangles, const std::vector<Vec3>& points,
@@ -35,6 +36,7 @@ ProximityRays wall_proximity_rays(const std::vector<Triangle>& triangles, const 
   r.wall_points = &points;
   r.wall_tree = &tree.tree;
   r.wall_normal = &tree.normal;
+  r.wall_normal_boxes = &tree.normal_boxes;
   if (plane) {
     r.plane = &*plane;
     r.on_plane = on_plane;
@@ -59,14 +61,15 @@ double distance_if_facing(int w, PointOf&& point_of, const Vec3& o, const Vec3& 
   return ray_triangle_distance(o, dir, P[t[0]], P[t[1]], P[t[2]], t_max);
 }
 
-// search(tree, triangles, points, unit normals, on_columns) over the wall and, when the
-// view has one, the front: the obstacles of first_hit and first_hits alike.
+// search(tree, triangles, points, unit normals, normal boxes or null, on_columns) over
+// the wall and, when the view has one, the front: the obstacles of first_hit and
+// first_hits alike.
 template <class Search>
 void search_obstacles(const ProximityRays& r, Search&& search) {
-  search(*r.wall_tree, *r.triangles, *r.wall_points, *r.wall_normal, false);
+  search(*r.wall_tree, *r.triangles, *r.wall_points, *r.wall_normal, r.wall_normal_boxes, false);
   if (r.front_points)
     search(*r.front_tree, r.front_triangles ? *r.front_triangles : *r.triangles, *r.front_points, *r.front_normal,
-           true);
+           r.front_normal_boxes, true);
 }
 
 }  // namespace
@@ -85,7 +88,7 @@ double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_
   const int w = wall_point ? (*wall_point)[v] : v;
   auto point_of = [&](int c) { return wall_point ? (*wall_point)[c] : c; };
   auto search = [&](const TriangleBvh& tree, const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
-                    const std::vector<Vec3>& normal, bool on_columns) {
+                    const std::vector<Vec3>& normal, const std::vector<UnitVectorBox>*, bool on_columns) {
     tree.for_each_on_segment(o, dir, std::min(t_max, best), [&](int i, double* tm) {
       const double d = distance_if_facing(w, point_of, o, dir, *tm, tris, P, normal, on_columns, i);
       if (d < best) {
@@ -100,7 +103,7 @@ double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_
 
 void ProximityRays::first_hits(const std::vector<char>& active, const std::vector<Vec3>& origin,
                                const std::vector<Vec3>& dir, const std::vector<double>& t_max,
-                               std::vector<double>* gap, TriangleBvh* kept) const {
+                               std::vector<double>* gap, RaySegments* kept) const {
   const int n = static_cast<int>(origin.size());
   gap->assign(n, HUGE_VAL);
   // Each segment's box holds it, so every triangle the segment meets overlaps it in the
@@ -110,8 +113,9 @@ void ProximityRays::first_hits(const std::vector<char>& active, const std::vecto
     const Vec3 end = active[v] ? origin[v] + t_max[v] * dir[v] : origin[v];
     return Box::of_triangle(origin[v], end, end);
   };
-  TriangleBvh local;
-  TriangleBvh& segments = kept ? *kept : local;
+  RaySegments local;
+  TriangleBvh& segments = kept ? kept->tree : local.tree;
+  std::vector<UnitVectorBox>& dir_boxes = kept ? kept->dir_boxes : local.dir_boxes;
   if (segments.empty() || segments.size() != n) {
     std::vector<Box> boxes(n);
     tbb::parallel_for(0, n, [&](int v) { boxes[v] = box_of(v); });
@@ -121,17 +125,24 @@ void ProximityRays::first_hits(const std::vector<char>& active, const std::vecto
   }
   std::vector<char> node_wanted;
   segments.mark_nodes(active, &node_wanted);
+  segments.node_value_boxes([&](int v) { return dir[v]; }, &dir_boxes);
   auto point_of = [&](int c) { return wall_point ? (*wall_point)[c] : c; };
   // Hits are few next to the pairs tested (most rays meet nothing): each thread lists
   // its own.
   tbb::enumerable_thread_specific<std::vector<std::pair<int, double>>> hits;
   auto search = [&](const TriangleBvh& tree, const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
-                    const std::vector<Vec3>& normal, bool on_columns) {
-    segments.for_each_overlapping_pair(active, node_wanted, tree, [&](int v, int i) {
+                    const std::vector<Vec3>& normal, const std::vector<UnitVectorBox>* normal_boxes, bool on_columns) {
+    auto visit = [&](int v, int i) {
       const double d =
           distance_if_facing(point_of(v), point_of, origin[v], dir[v], t_max[v], tris, P, normal, on_columns, i);
       if (d < HUGE_VAL) hits.local().emplace_back(v, d);
-    });
+    };
+    if (normal_boxes)
+      segments.for_each_overlapping_pair(active, node_wanted, tree, visit, [&](int a, int b) {
+        return !dot_positive_throughout(dir_boxes[a], (*normal_boxes)[b]);
+      });
+    else
+      segments.for_each_overlapping_pair(active, node_wanted, tree, visit);
   };
   search_obstacles(*this, search);
   for (const auto& list : hits)

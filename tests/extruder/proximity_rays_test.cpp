@@ -64,7 +64,7 @@ RayBatch random_rays(const TriSurface& wall, const std::vector<Vec3>& origin, un
 }
 
 // The rays' distances one at a time and batched; counts the columns that hit something.
-int expect_batched_equals_one_by_one(const ProximityRays& rays, const RayBatch& b, TriangleBvh* kept) {
+int expect_batched_equals_one_by_one(const ProximityRays& rays, const RayBatch& b, RaySegments* kept) {
   std::vector<double> gap;
   rays.first_hits(b.active, b.origin, b.dir, b.reach, &gap, kept);
   EXPECT_EQ(gap.size(), b.origin.size());
@@ -106,6 +106,9 @@ TEST(ProximityRays, BatchedHitsOnTheFrontAndThePlaneEqualOneRayAtATime) {
   rays.front_points = &top;
   rays.front_tree = &front_tree;
   rays.front_normal = &front_normal;
+  std::vector<UnitVectorBox> front_normal_boxes;
+  front_tree.node_value_boxes([&](int f) { return front_normal[f]; }, &front_normal_boxes);
+  rays.front_normal_boxes = &front_normal_boxes;
   SymmetryPlane plane;
   Vec3 centre{0.0, 0.0, 0.0};
   for (const Vec3& p : wall.points) centre += p / static_cast<double>(wall.points.size());
@@ -125,7 +128,7 @@ TEST(ProximityRays, AKeptRayTreeFollowsTheSegmentsFromCallToCall) {
   const TriSurface wall = thin_slot();
   const WallTree tree(wall);
   const ProximityRays rays = wall_proximity_rays(wall.triangles, wall.points, tree);
-  TriangleBvh kept;
+  RaySegments kept;
   RayBatch b = random_rays(wall, wall.points, 4);
   expect_batched_equals_one_by_one(rays, b, &kept);
   // Every ray turned to another random direction and reach, every fifth column stopped.
@@ -141,7 +144,7 @@ TEST(ProximityRays, AKeptRayTreeFollowsTheSegmentsFromCallToCall) {
   half.dir.resize(n);
   half.reach.resize(n);
   expect_batched_equals_one_by_one(rays, half, &kept);
-  EXPECT_EQ(kept.size(), static_cast<int>(n));
+  EXPECT_EQ(kept.tree.size(), static_cast<int>(n));
 }
 
 }  // namespace

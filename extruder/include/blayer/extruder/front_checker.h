@@ -155,6 +155,7 @@ class FrontChecker {
   TriangleBvh cur_tree_, new_tree_;
   int new_tree_layer_ = -1;  // the layer new_tree_ was last refitted for
   std::vector<Vec3> cur_normal_;
+  std::vector<UnitVectorBox> cur_normal_boxes_;  // per node of cur_tree_ (ProximityRays)
   const std::vector<Vec3>* cur_points_ = nullptr;
 
   std::vector<Vec3> soup_;

@@ -44,7 +44,7 @@ void stop_fan_groups(int k, const WallTopology& topo, ColumnPlan* plan, ColumnSt
 // one layer to the next (ProximityRays::first_hits).
 void limit_by_proximity(int k, const ProximityRays& rays, const WallTopology& topo, const WallPlanes& planes,
                         const StepDirections& d, const ExtrusionParams& p, ColumnPlan* plan, ColumnState* columns,
-                        TriangleBvh* ray_tree = nullptr);
+                        RaySegments* ray_tree = nullptr);
 
 // Exact checks of layer k with local repair, until every cell of it passes. Columns of
 // failing cells or colliding triangles are
