@@ -5,6 +5,9 @@
 //                            wing-skin vertices with mesh jitter; 12-60: CAD-like fans,
 //                            tests/normals/cad_fans.h, with offsets of 1e-5 and 1e-3 of
 //                            the edge length)
+//   ByShape/default/<shape>/<k>  the same CAD-like fans one shape at a time (ridge,
+//                            corner, rim, sliver; 32 fans, valence 20, 40, 60): where
+//                            the averages above come from
 //   Poles/<solver>/<k>       poles of bodies of revolution of valence k (every ring
 //                            point at one elevation), exact and with the ring moved by
 //                            1e-12, 1e-7 and 1e-5 of its radius
@@ -37,6 +40,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "blayer/io/prepare_surface.h"
@@ -91,6 +95,18 @@ std::vector<FanGeometry> fans_of_valence(int k, std::size_t count = 64) {
   return fans;
 }
 
+// The first 32 non-degenerate CAD-like fans of one shape and valence k, offsets 1e-5
+// and 1e-3 in turn (ByShape: which shape the averages of ByValence come from).
+std::vector<FanGeometry> fans_of_shape(testing_fans::CadShape shape, int k) {
+  std::vector<FanGeometry> fans;
+  std::mt19937 rng(4242u + static_cast<unsigned>(k));
+  for (int t = 0; fans.size() < 32 && t < 2000; ++t) {
+    FanGeometry g = testing_fans::geometry(testing_fans::cad_like_fan(rng, shape, k, t % 2 == 0 ? 1e-5 : 1e-3));
+    if (!g.any_degenerate) fans.push_back(std::move(g));
+  }
+  return fans;
+}
+
 std::vector<FanGeometry> plateau_fans_of_valence(int k) {
   std::vector<FanGeometry> fans;
   std::mt19937 rng(777u + static_cast<unsigned>(k));
@@ -134,7 +150,7 @@ double longest_vertex_us(Solver solver, const std::vector<FanGeometry>& fans, in
   return worst;
 }
 
-enum class Family { kMixed, kPoles, kPlateaus, kSlackPoles };
+enum class Family { kMixed, kPoles, kPlateaus, kSlackPoles, kRidges, kCorners, kRims, kSlivers };
 
 std::vector<FanGeometry> fans_of(Family family, int k) {
   switch (family) {
@@ -142,6 +158,10 @@ std::vector<FanGeometry> fans_of(Family family, int k) {
     case Family::kPoles: return poles_of_valence(k, {0.0, 1e-12, 1e-7, 1e-5});
     case Family::kPlateaus: return plateau_fans_of_valence(k);
     case Family::kSlackPoles: return poles_of_valence(k, {1e-9});
+    case Family::kRidges: return fans_of_shape(testing_fans::CadShape::kRidge, k);
+    case Family::kCorners: return fans_of_shape(testing_fans::CadShape::kCorner, k);
+    case Family::kRims: return fans_of_shape(testing_fans::CadShape::kRim, k);
+    case Family::kSlivers: return fans_of_shape(testing_fans::CadShape::kSliver, k);
   }
   return {};
 }
@@ -194,6 +214,14 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(("ByValence/" + std::string(solver_name(s)) + "/" + std::to_string(k)).c_str(),
                                    by_valence, s, k, Family::kMixed);
     }
+  for (auto [family, shape] : {std::pair<Family, testing_fans::CadShape>{Family::kRidges, testing_fans::CadShape::kRidge},
+                                {Family::kCorners, testing_fans::CadShape::kCorner},
+                                {Family::kRims, testing_fans::CadShape::kRim},
+                                {Family::kSlivers, testing_fans::CadShape::kSliver}})
+    for (int k : {20, 40, 60})
+      benchmark::RegisterBenchmark(
+          ("ByShape/default/" + std::string(testing_fans::cad_shape_name(shape)) + "/" + std::to_string(k)).c_str(),
+          by_valence, Solver::kDefault, k, family);
   for (int k : {16, 32, 64, 96})
     for (Solver s : {Solver::kDefault, Solver::kPruned})
       benchmark::RegisterBenchmark(("Poles/" + std::string(solver_name(s)) + "/" + std::to_string(k)).c_str(),
