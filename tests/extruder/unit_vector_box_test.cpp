@@ -53,10 +53,19 @@ TEST(UnitVectorBox, HoldsEveryVectorItIsMadeFrom) {
   // Rounded past 1: clamped, still within a step of the bound.
   const UnitVectorBox over = UnitVectorBox::of(Vec3{std::nextafter(1.0, 2.0), 0.0, 0.0});
   EXPECT_EQ(over.hi[0], UnitVectorBox::kScale);
-  // NaN: the whole range.
-  const UnitVectorBox nan = UnitVectorBox::of(Vec3{std::nan(""), 0.0, 0.0});
-  EXPECT_EQ(nan.lo[0], -UnitVectorBox::kScale);
-  EXPECT_EQ(nan.hi[0], UnitVectorBox::kScale);
+  // NaN or not a unit vector: the whole cube, which never claims a positive dot
+  // product, even against a box of one vector. Clamped to (1, -1, 0), the non-unit
+  // (2, -3, 0) would have claimed one with (0.8, 0.6, 0), whose dot product with it is
+  // -0.2.
+  for (const Vec3& u : {Vec3{std::nan(""), 0.0, 0.0}, Vec3{2.0, -3.0, 0.0}}) {
+    const UnitVectorBox b = UnitVectorBox::of(u);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(b.lo[i], -UnitVectorBox::kScale);
+      EXPECT_EQ(b.hi[i], UnitVectorBox::kScale);
+    }
+    EXPECT_FALSE(dot_positive_throughout(b, UnitVectorBox::of(Vec3{0.8, 0.6, 0.0})));
+    EXPECT_FALSE(dot_positive_throughout(b, UnitVectorBox::of(Vec3{1.0, 0.0, 0.0})));
+  }
 }
 
 TEST(UnitVectorBox, PositiveThroughoutOnlyWhereEveryPairHasAPositiveDotProduct) {

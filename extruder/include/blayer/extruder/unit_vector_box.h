@@ -25,15 +25,25 @@ struct UnitVectorBox {
   // The box of one unit vector. A component is clamped to [-1, 1] first: a normalised
   // vector's may pass 1 by a rounding (about 1e-16), far below what the tests below
   // resolve. The bounds are taken 1e-9 outwards of the scaled component, so that the
-  // rounding of u[i] * 127 cannot put a bound past it. A NaN component gives the whole
-  // range.
+  // rounding of u[i] * 127 cannot put a bound past it. A vector with a NaN component or
+  // one beyond 1 + 1e-6 (not a unit vector) gets the whole cube, with which
+  // dot_positive_throughout never holds.
   static UnitVectorBox of(const Vec3& u) {
     UnitVectorBox b;
+    for (int i = 0; i < 3; ++i)
+      if (!(std::fabs(u[i]) <= 1.0 + 1e-6)) return whole();
     for (int i = 0; i < 3; ++i) {
       const double x = std::clamp(u[i], -1.0, 1.0) * kScale;
-      b.lo[i] = static_cast<std::int8_t>(x == x ? std::max(-kScale, static_cast<int>(std::floor(x - 1e-9))) : -kScale);
-      b.hi[i] = static_cast<std::int8_t>(x == x ? std::min(kScale, static_cast<int>(std::ceil(x + 1e-9))) : kScale);
+      b.lo[i] = static_cast<std::int8_t>(std::max(-kScale, static_cast<int>(std::floor(x - 1e-9))));
+      b.hi[i] = static_cast<std::int8_t>(std::min(kScale, static_cast<int>(std::ceil(x + 1e-9))));
     }
+    return b;
+  }
+
+  // Every vector of the cube [-1, 1]^3.
+  static UnitVectorBox whole() {
+    UnitVectorBox b;
+    for (int i = 0; i < 3; ++i) b.lo[i] = -kScale, b.hi[i] = kScale;
     return b;
   }
 
@@ -48,7 +58,8 @@ struct UnitVectorBox {
 // Whether every vector of box a has a positive dot product with every vector of box b:
 // the least corner product of each axis, summed, in integers (exact). It is then at
 // least 1 / 127^2 (6.2e-5) for the vectors the boxes hold, so a dot product of two
-// such unit vectors rounded in doubles is positive too. False for an empty box.
+// such unit vectors rounded in doubles is positive too. False for an empty box and for
+// the whole cube (each axis's least product is then at most zero).
 inline bool dot_positive_throughout(const UnitVectorBox& a, const UnitVectorBox& b) {
   int least = 0;
   for (int i = 0; i < 3; ++i) {
