@@ -87,15 +87,21 @@ double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_
   double best = HUGE_VAL;
   const int w = wall_point ? (*wall_point)[v] : v;
   auto point_of = [&](int c) { return wall_point ? (*wall_point)[c] : c; };
+  const UnitVectorBox dir_box = UnitVectorBox::of(dir);
   auto search = [&](const TriangleBvh& tree, const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
-                    const std::vector<Vec3>& normal, const std::vector<UnitVectorBox>*, bool on_columns) {
-    tree.for_each_on_segment(o, dir, std::min(t_max, best), [&](int i, double* tm) {
+                    const std::vector<Vec3>& normal, const std::vector<UnitVectorBox>* normal_boxes, bool on_columns) {
+    auto visit = [&](int i, double* tm) {
       const double d = distance_if_facing(w, point_of, o, dir, *tm, tris, P, normal, on_columns, i);
       if (d < best) {
         best = d;
         *tm = d;
       }
-    });
+    };
+    if (normal_boxes)
+      tree.for_each_on_segment(o, dir, std::min(t_max, best), visit,
+                               [&](int node) { return !dot_positive_throughout(dir_box, (*normal_boxes)[node]); });
+    else
+      tree.for_each_on_segment(o, dir, std::min(t_max, best), visit);
   };
   search_obstacles(*this, search);
   return std::min(best, distance_to_plane(v, o, dir, t_max));

@@ -1,7 +1,8 @@
 // The batched proximity query (ProximityRays::first_hits, one pair traversal of a tree
 // over the rays' segments with the wall's and the front's trees) against its oracle,
-// one ray at a time (first_hit): the same distance for every column, to the bit, over
-// rays that hit the wall, the front, the symmetry plane or nothing.
+// one ray at a time (first_hit), and first_hit against itself without the trees'
+// normal boxes: the same distance for every column, to the bit, over rays that hit the
+// wall, the front, the symmetry plane or nothing.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -63,15 +64,21 @@ RayBatch random_rays(const TriSurface& wall, const std::vector<Vec3>& origin, un
   return b;
 }
 
-// The rays' distances one at a time and batched; counts the columns that hit something.
+// The rays' distances one at a time and batched, and one at a time without the trees'
+// normal boxes (nothing skipped); counts the columns that hit something.
 int expect_batched_equals_one_by_one(const ProximityRays& rays, const RayBatch& b, RaySegments* kept) {
   std::vector<double> gap;
   rays.first_hits(b.active, b.origin, b.dir, b.reach, &gap, kept);
   EXPECT_EQ(gap.size(), b.origin.size());
+  ProximityRays unfiltered = rays;
+  unfiltered.wall_normal_boxes = nullptr;
+  unfiltered.front_normal_boxes = nullptr;
   int hits = 0;
   for (std::size_t v = 0; v < b.origin.size() && v < gap.size(); ++v) {
     const int c = static_cast<int>(v);
     const double one = b.active[v] ? rays.first_hit(c, b.origin[v], b.dir[v], b.reach[v]) : HUGE_VAL;
+    const double plain = b.active[v] ? unfiltered.first_hit(c, b.origin[v], b.dir[v], b.reach[v]) : HUGE_VAL;
+    EXPECT_EQ(one, plain) << "column " << v;
     EXPECT_EQ(gap[v], one) << "column " << v;
     hits += one < HUGE_VAL;
   }

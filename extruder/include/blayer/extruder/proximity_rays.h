@@ -37,8 +37,9 @@ struct ProximityRays {
   const TriangleBvh* wall_tree = nullptr;
   const std::vector<Vec3>* wall_normal = nullptr;
   // Per node of each tree, a box of its triangles' unit normals
-  // (TriangleBvh::node_value_boxes), or null: first_hits skips the node pairs whose
-  // triangles all face away from the rays below them.
+  // (TriangleBvh::node_value_boxes), or null: first_hit skips the nodes whose triangles
+  // all face away from the ray, first_hits the node pairs whose triangles all face away
+  // from the rays below them.
   const std::vector<UnitVectorBox>* wall_normal_boxes = nullptr;
   const std::vector<Vec3>* front_points = nullptr;  // null: the wall only
   const TriangleBvh* front_tree = nullptr;

@@ -368,6 +368,13 @@ class TriangleBvh {
   // (closest-hit queries).
   template <class Visit>
   void for_each_on_segment(const Vec3& origin, const Vec3& dir, double t_max, Visit&& visit) const {
+    for_each_on_segment(origin, dir, t_max, visit, [](int) { return true; });
+  }
+  // The same, where node_may_visit(n) may rule out every item below node n: it returns
+  // false only where visit would do nothing with any of them.
+  template <class Visit, class NodeFilter>
+  void for_each_on_segment(const Vec3& origin, const Vec3& dir, double t_max, Visit&& visit,
+                           NodeFilter&& node_may_visit) const {
     if (nodes_.empty()) return;
     Vec3 inv;
     // +inf for an axis-parallel ray, also when the component is -0.0: 1 / -0.0 = -inf
@@ -382,7 +389,7 @@ class TriangleBvh {
     int stack[128];
     int top = 0;
     const double t_start = t_max;
-    if (segment_hits_box(origin, inv, t_max, nodes_[0].box)) stack[top++] = 0;
+    if (segment_hits_box(origin, inv, t_max, nodes_[0].box) && node_may_visit(0)) stack[top++] = 0;
     while (top > 0) {
       const Node& n = nodes_[stack[--top]];
       if (t_max < t_start && !segment_hits_box(origin, inv, t_max, n.box)) continue;
@@ -391,7 +398,7 @@ class TriangleBvh {
           if (segment_hits_box(origin, inv, t_max, item_box_[i])) visit(items_[i], &t_max);
       } else {
         for (const int child : {n.first, n.first + n.left_nodes})
-          if (segment_hits_box(origin, inv, t_max, nodes_[child].box)) stack[top++] = child;
+          if (segment_hits_box(origin, inv, t_max, nodes_[child].box) && node_may_visit(child)) stack[top++] = child;
       }
     }
   }
