@@ -72,6 +72,12 @@ void search_obstacles(const ProximityRays& r, Search&& search) {
            r.front_normal_boxes, true);
 }
 
+// Whether every triangle below node `node` faces away from every ray direction in
+// `dirs` (distance_if_facing turns them all down); never without normal boxes.
+bool faces_away(const std::vector<UnitVectorBox>* normal_boxes, int node, const UnitVectorBox& dirs) {
+  return normal_boxes && dot_positive_throughout(dirs, (*normal_boxes)[node]);
+}
+
 }  // namespace
 
 double ProximityRays::distance_to_plane(int v, const Vec3& o, const Vec3& dir, double t_max) const {
@@ -90,18 +96,16 @@ double ProximityRays::first_hit(int v, const Vec3& o, const Vec3& dir, double t_
   const UnitVectorBox dir_box = UnitVectorBox::of(dir);
   auto search = [&](const TriangleBvh& tree, const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
                     const std::vector<Vec3>& normal, const std::vector<UnitVectorBox>* normal_boxes, bool on_columns) {
-    auto visit = [&](int i, double* tm) {
-      const double d = distance_if_facing(w, point_of, o, dir, *tm, tris, P, normal, on_columns, i);
-      if (d < best) {
-        best = d;
-        *tm = d;
-      }
-    };
-    if (normal_boxes)
-      tree.for_each_on_segment(o, dir, std::min(t_max, best), visit,
-                               [&](int node) { return !dot_positive_throughout(dir_box, (*normal_boxes)[node]); });
-    else
-      tree.for_each_on_segment(o, dir, std::min(t_max, best), visit);
+    tree.for_each_on_segment(
+        o, dir, std::min(t_max, best),
+        [&](int i, double* tm) {
+          const double d = distance_if_facing(w, point_of, o, dir, *tm, tris, P, normal, on_columns, i);
+          if (d < best) {
+            best = d;
+            *tm = d;
+          }
+        },
+        [&](int node) { return !faces_away(normal_boxes, node, dir_box); });
   };
   search_obstacles(*this, search);
   return std::min(best, distance_to_plane(v, o, dir, t_max));
@@ -138,17 +142,14 @@ void ProximityRays::first_hits(const std::vector<char>& active, const std::vecto
   tbb::enumerable_thread_specific<std::vector<std::pair<int, double>>> hits;
   auto search = [&](const TriangleBvh& tree, const std::vector<Triangle>& tris, const std::vector<Vec3>& P,
                     const std::vector<Vec3>& normal, const std::vector<UnitVectorBox>* normal_boxes, bool on_columns) {
-    auto visit = [&](int v, int i) {
-      const double d =
-          distance_if_facing(point_of(v), point_of, origin[v], dir[v], t_max[v], tris, P, normal, on_columns, i);
-      if (d < HUGE_VAL) hits.local().emplace_back(v, d);
-    };
-    if (normal_boxes)
-      segments.for_each_overlapping_pair(active, node_wanted, tree, visit, [&](int a, int b) {
-        return !dot_positive_throughout(dir_boxes[a], (*normal_boxes)[b]);
-      });
-    else
-      segments.for_each_overlapping_pair(active, node_wanted, tree, visit);
+    segments.for_each_overlapping_pair(
+        active, node_wanted, tree,
+        [&](int v, int i) {
+          const double d =
+              distance_if_facing(point_of(v), point_of, origin[v], dir[v], t_max[v], tris, P, normal, on_columns, i);
+          if (d < HUGE_VAL) hits.local().emplace_back(v, d);
+        },
+        [&](int a, int b) { return !faces_away(normal_boxes, b, dir_boxes[a]); });
   };
   search_obstacles(*this, search);
   for (const auto& list : hits)
