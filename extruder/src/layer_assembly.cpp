@@ -1,5 +1,7 @@
 #include "blayer/extruder/layer_assembly.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <limits>
 #include <memory>
@@ -80,17 +82,7 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
   }
   columns_per_layer_.push_back(n_grown);
   require_indexable_points(mesh_.points.size(), "layer " + std::to_string(k + 1));
-  for (std::size_t i_e = 0; i_e < elements_.size(); ++i_e) {
-    LayerCell cells[2];
-    const int n_cells = element_layer_cells(
-        elements_[i_e], [&](int c) { return columns->top_id[c]; }, [&](int c) { return new_top[c]; },
-        [&](int c) { return grows[c] != 0; }, cells);
-    for (int i = 0; i < n_cells; ++i) {
-      mesh_.add_cell(cells[i].type, cells[i].nodes.data());
-      if (i_e >= n_wall_elements_) ++fan_cells_;
-      cell_layer_.push_back(static_cast<std::uint16_t>(k));
-    }
-  }
+  append_layer_cells(k, grows, columns->top_id, new_top);
   for (int v = 0; v < nv; ++v) {
     if (!grows[v]) continue;
     columns->path[v] += norm(next[v] - columns->top[v]);
@@ -98,6 +90,49 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
     columns->top[v] = next[v];
     columns->top_id[v] = new_top[v];
     ++columns->layers[v];
+  }
+}
+
+namespace {
+
+// Elements per block of a layer's cells (append_layer_cells).
+constexpr std::size_t kElementsPerBlock = 4096;
+
+}  // namespace
+
+// The blocks are built in parallel and appended in element order, so the mesh is the
+// one an element-by-element loop builds; the loop took 0.07 s of the perforated
+// block's run, on one core.
+void LayerAssembler::append_layer_cells(int k, const std::vector<char>& grows, const std::vector<std::int64_t>& bottom,
+                                        const std::vector<std::int64_t>& top) {
+  const std::size_t n_elements = elements_.size();
+  std::vector<CellBlock>& blocks = cell_blocks_;
+  blocks.resize((n_elements + kElementsPerBlock - 1) / kElementsPerBlock);
+  tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
+    CellBlock& out = blocks[b];
+    out.types.clear();
+    out.ids.clear();
+    out.n_fan = 0;
+    const std::size_t first = b * kElementsPerBlock, last = std::min(n_elements, first + kElementsPerBlock);
+    for (std::size_t i_e = first; i_e < last; ++i_e) {
+      LayerCell cells[2];
+      const int n_cells = element_layer_cells(
+          elements_[i_e], [&](int c) { return bottom[c]; }, [&](int c) { return top[c]; },
+          [&](int c) { return grows[c] != 0; }, cells);
+      for (int i = 0; i < n_cells; ++i) {
+        out.types.push_back(cells[i].type);
+        for (int j = 0; j < corner_count(cells[i].type); ++j) out.ids.push_back(static_cast<PointId>(cells[i].nodes[j]));
+      }
+      if (i_e >= n_wall_elements_) out.n_fan += n_cells;
+    }
+  });
+  for (const CellBlock& b : blocks) {
+    mesh_.cell_types.insert(mesh_.cell_types.end(), b.types.begin(), b.types.end());
+    mesh_.connectivity.insert(mesh_.connectivity.end(), b.ids.begin(), b.ids.end());
+    std::int64_t offset = mesh_.offsets.back();
+    for (const CellType t : b.types) mesh_.offsets.push_back(offset += corner_count(t));
+    cell_layer_.insert(cell_layer_.end(), b.types.size(), static_cast<std::uint16_t>(k));
+    fan_cells_ += b.n_fan;
   }
 }
 

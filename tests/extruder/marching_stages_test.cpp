@@ -9,9 +9,11 @@
 #include "blayer/extruder/column_heights.h"
 #include "blayer/extruder/column_plan.h"
 #include "blayer/extruder/wall_planes.h"
+#include "blayer/extruder/fan_layout.h"
 #include "blayer/extruder/front_checker.h"
 #include "blayer/extruder/height_smoothing.h"
 #include "blayer/extruder/layer_assembly.h"
+#include "blayer/extruder/layer_cells.h"
 #include "blayer/extruder/layer_steps.h"
 #include "blayer/extruder/proximity_rays.h"
 #include "blayer/extruder/step_directions.h"
@@ -638,6 +640,59 @@ TEST(LayerAssembly, CellTypesFollowHowManyColumnsGrow) {
   EXPECT_EQ(a.columns_per_layer(), std::vector<int>{3});
   EXPECT_NE(m.find_point_array("column_height"), nullptr);
   EXPECT_DOUBLE_EQ(m.find_point_array("column_height")->values[4], 0.1);  // point 4 = top of column 0
+}
+
+TEST(LayerAssembly, CellsOfAFrontOfManyElementsFollowTheElementOrder) {
+  // 9,800 wall triangles: the layer's cells are built in blocks of elements, and the
+  // mesh must be the one an element-by-element loop builds (the oracle below).
+  const TriSurface wall = flat_grid(70);
+  const WallTopology topo = build_wall_topology(wall);
+  const ExtrusionParams p = test::growth_params(3, 0.1, 1.0);
+  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  const ColumnLayout layout = single_column_layout(wall);
+  ColumnState c = ColumnState::on_wall(wall.points, topo.used);
+  LayerAssembler a(wall, d);
+  std::mt19937 rng(7);
+  std::vector<char> grows(wall.points.size(), 1);
+  std::vector<CellType> types;
+  std::vector<std::int64_t> ids, offsets{0};
+  std::vector<double> layer;
+  std::int64_t n_points = static_cast<std::int64_t>(wall.points.size());
+  for (int k = 0; k < 3; ++k) {
+    // Columns stop at random, a fifth of those still growing per layer.
+    for (char& g : grows) g = g && rng() % 5 != 0;
+    std::vector<std::int64_t> new_top(grows.size(), -1);
+    for (std::size_t v = 0; v < grows.size(); ++v)
+      if (grows[v]) new_top[v] = n_points++;
+    for (const LayerElement& e : layout.elements) {
+      LayerCell cells[2];
+      const int n = element_layer_cells(
+          e, [&](int col) { return c.top_id[col]; }, [&](int col) { return new_top[col]; },
+          [&](int col) { return grows[col] != 0; }, cells);
+      for (int i = 0; i < n; ++i) {
+        types.push_back(cells[i].type);
+        for (int j = 0; j < corner_count(cells[i].type); ++j) ids.push_back(cells[i].nodes[j]);
+        offsets.push_back(static_cast<std::int64_t>(ids.size()));
+        layer.push_back(k);
+      }
+    }
+    std::vector<Vec3> next = c.top;
+    for (Vec3& q : next) q[2] += 0.1;
+    a.commit_layer(k, grows, next, d, &c);
+  }
+  VolumeMesh m = a.take_mesh();
+  a.attach_arrays(c, &m);
+  ASSERT_GT(types.size(), 2u * 4096u);
+  EXPECT_EQ(m.cell_types, types);
+  EXPECT_EQ(m.offsets, offsets);
+  ASSERT_EQ(m.connectivity.size(), ids.size());
+  EXPECT_TRUE(std::equal(ids.begin(), ids.end(), m.connectivity.begin()));
+  EXPECT_EQ(static_cast<std::int64_t>(m.points.size()), n_points);
+  const DataArray* cell_layer = m.find_cell_array("layer");
+  ASSERT_NE(cell_layer, nullptr);
+  ASSERT_EQ(cell_layer->values.size(), layer.size());
+  for (std::size_t i = 0; i < layer.size(); ++i) ASSERT_EQ(cell_layer->values[i], layer[i]) << i;
+  EXPECT_EQ(a.fan_cells(), 0);
 }
 
 }  // namespace

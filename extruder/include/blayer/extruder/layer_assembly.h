@@ -55,11 +55,18 @@ class LayerAssembler {
   //   cell   layer
   // A run summarises its cells in between, so that the summary's tables and the arrays
   // never add up in its peak memory.
-  VolumeMesh take_mesh() { return std::move(mesh_); }
+  VolumeMesh take_mesh() {
+    cell_blocks_ = {};
+    return std::move(mesh_);
+  }
   void attach_arrays(const ColumnState& columns, VolumeMesh* mesh);
 
  private:
   void set_point_normal(std::int64_t p, const Vec3& n);
+  // Appends layer k's cells: each element's by which of its columns grow, from their
+  // point ids at the layer's base (bottom) and one layer up (top).
+  void append_layer_cells(int k, const std::vector<char>& grows, const std::vector<std::int64_t>& bottom,
+                          const std::vector<std::int64_t>& top);
 
   std::shared_ptr<const ColumnLayout> layout_;
   const std::vector<LayerElement>& elements_;
@@ -75,6 +82,14 @@ class LayerAssembler {
   // as the Int32 array `layer`.
   std::vector<std::uint16_t> cell_layer_;
   std::vector<int> columns_per_layer_;
+  // The cells of a block of elements, in element order, as the mesh stores them; kept
+  // from layer to layer, so that their buffers are allocated once.
+  struct CellBlock {
+    std::vector<CellType> types;
+    std::vector<PointId> ids;
+    std::int64_t n_fan = 0;  // cells on fan elements
+  };
+  std::vector<CellBlock> cell_blocks_;
   double min_visibility_ = 1.0;
 };
 
