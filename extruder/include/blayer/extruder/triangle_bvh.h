@@ -194,20 +194,28 @@ class TriangleBvh {
   // (*out)[n] = the union of ValueBox::of(value_of(item)) over the items below node n,
   // ValueBox having empty(), of() and unite() as UnitVectorBox has. The bounds of node
   // pair filters (for_each_overlapping_pair); valid until the next build or join.
+  // value_of is called from several threads.
   template <class ValueOf, class ValueBox>
   void node_value_boxes(ValueOf&& value_of, std::vector<ValueBox>* out) const {
-    out->resize(nodes_.size());
-    // Preorder: a reverse sweep sees both children of a node before the node.
-    for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i) {
+    const int n = static_cast<int>(nodes_.size());
+    out->resize(n);
+    // The leaves in parallel: their items' boxes are most of the work (serially, the
+    // current front's normal boxes took 22 ms of the perforated block's ten layers).
+    tbb::parallel_for(0, n, [&](int i) {
       const Node& nd = nodes_[i];
+      if (nd.count == 0) return;
       ValueBox& b = (*out)[i];
-      if (nd.count > 0) {
-        b = ValueBox::empty();
-        for (int j = nd.first; j < nd.first + nd.count; ++j) b.unite(ValueBox::of(value_of(items_[j])));
-      } else {
-        b = (*out)[nd.first];
-        b.unite((*out)[nd.first + nd.left_nodes]);
-      }
+      b = ValueBox::empty();
+      for (int j = nd.first; j < nd.first + nd.count; ++j) b.unite(ValueBox::of(value_of(items_[j])));
+    });
+    // Then the inner nodes; in preorder, a reverse sweep sees both children of a node
+    // before the node.
+    for (int i = n - 1; i >= 0; --i) {
+      const Node& nd = nodes_[i];
+      if (nd.count > 0) continue;
+      ValueBox& b = (*out)[i];
+      b = (*out)[nd.first];
+      b.unite((*out)[nd.first + nd.left_nodes]);
     }
   }
 
