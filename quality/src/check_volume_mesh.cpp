@@ -350,9 +350,19 @@ MeshCheckReport check_volume_mesh(const VolumeMesh& mesh, CheckSummaries summari
   r.overshared_faces = fc.overshared;
   r.misoriented_faces = fc.misoriented;
 
-  r.validity.assign(n, Validity::kValid);
-  r.flags.assign(n, 0);
-  for (std::vector<double>& m : r.metrics) m.assign(n, kNaN);
+  // Allocated here, filled side by side: writing fresh memory (its page faults) was
+  // most of their cost, 21 ms of the perforated block's check on one thread.
+  r.validity.reserve(n);
+  r.flags.reserve(n);
+  for (std::vector<double>& m : r.metrics) m.reserve(n);
+  tbb::parallel_for(std::size_t{0}, r.metrics.size() + 2, [&](std::size_t i) {
+    if (i < r.metrics.size())
+      r.metrics[i].assign(n, kNaN);
+    else if (i == r.metrics.size())
+      r.validity.assign(n, Validity::kValid);
+    else
+      r.flags.assign(n, 0);
+  });
   enum { kJac, kSkew, kAspect, kOrtho, kTwist, kGrowth, kVolume };
   static_assert(kVolume == kVolumeMetric);
 
