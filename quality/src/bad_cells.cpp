@@ -1,3 +1,5 @@
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <stdexcept>
@@ -66,12 +68,15 @@ void add_quality_arrays(VolumeMesh& mesh, const MeshCheckReport& report) {
 
 void move_quality_arrays(VolumeMesh& mesh, MeshCheckReport* report) {
   require_matching(mesh, *report, "move_quality_arrays");
-  std::vector<DataArray> arrays;
-  for (std::size_t k = 0; k < kCheckMetricNames.size(); ++k) {
-    // One metric at a time, its doubles freed as soon as they are copied.
-    arrays.push_back(DataArray{kCheckMetricNames[k], 1, ArrayValues(ValueType::kFloat32, report->metrics[k])});
+  // The metrics side by side, each one's doubles freed as soon as they are copied: a
+  // thread converts one metric at a time, so the memory held beyond the doubles is one
+  // Float32 array per thread. Serially they took 33 ms of the perforated block's run,
+  // most of it writing fresh memory.
+  std::vector<DataArray> arrays(kCheckMetricNames.size());
+  tbb::parallel_for(std::size_t{0}, kCheckMetricNames.size(), [&](std::size_t k) {
+    arrays[k] = DataArray{kCheckMetricNames[k], 1, ArrayValues(ValueType::kFloat32, report->metrics[k])};
     std::vector<double>().swap(report->metrics[k]);
-  }
+  });
   append_validity_and_flags(*report, nullptr, &arrays);
   for (DataArray& a : arrays) set_array(mesh.cell_data, std::move(a));
 }
