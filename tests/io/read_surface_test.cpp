@@ -37,6 +37,28 @@ TEST(ReadSurface, OffKeepsVertexOrderAndDoubleCoordinates) {
   EXPECT_EQ(soup.faces[0], (std::vector<int>{0, 2, 1}));
 }
 
+TEST(ReadSurface, AFileOfSeveralMebibytesIsReadToItsLastByte) {
+  // Files are read in blocks of 1 MiB: a 300 x 300 grid as OFF (about 5 MB) must come
+  // back whole, its last point and face included.
+  const int n = 300;
+  std::string text = "OFF\n" + std::to_string(n * n) + " " + std::to_string(2 * (n - 1) * (n - 1)) + " 0\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) text += std::to_string(i) + " " + std::to_string(j) + " 0.5\n";
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
+      text += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) + "\n";
+      text += "3 " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) + "\n";
+    }
+  ASSERT_GT(text.size(), 4u << 20);
+  TempDir dir;
+  const PolygonSoup soup = read_polygon_soup(dir.write("grid.off", text));
+  ASSERT_EQ(soup.points.size(), static_cast<std::size_t>(n * n));
+  EXPECT_EQ(soup.points.back(), (Vec3{n - 1.0, n - 1.0, 0.5}));
+  ASSERT_EQ(soup.faces.size(), static_cast<std::size_t>(2 * (n - 1) * (n - 1)));
+  EXPECT_EQ(soup.faces.back(), (std::vector<int>{n * n - n - 2, n * n - 1, n * n - 2}));
+}
+
 TEST(ReadSurface, ObjIsRead) {
   TempDir dir;
   const std::string f =
