@@ -328,10 +328,7 @@ class TriangleBvh {
     BLAYER_EXPENSIVE_ASSERT(twin.items_ == items_);
     if (nodes_.empty()) return;
     if (node_wanted.empty()) {
-      for_each_wanted_leaf(wanted, [&](int i) {
-        own_pairs_of_leaf(i, wanted, visit_self);
-        pairs_of_leaf_with(i, twin, visit_twin);
-      });
+      for_each_wanted_leaf(wanted, [&](int i) { pairs_of_leaf_with_twin(i, wanted, twin, visit_self, visit_twin); });
       return;
     }
     if (!node_wanted[0]) return;
@@ -474,6 +471,33 @@ class TriangleBvh {
     for_each_leaf_overlapping(item_box_[i], [&](int j) {
       if (j != i && (i < j || !wanted[items_[j]]) && !slabs_apart(i, *this, j)) visit(items_[i], items_[j]);
     });
+  }
+
+  // own_pairs_of_leaf(i, wanted, visit_self) and pairs_of_leaf_with(i, twin,
+  // visit_twin) in one descent of the layout the two trees share: a node is entered
+  // where leaf position i's box overlaps its box in either tree, and each item is
+  // tested against i's box in each tree, so the pairs are those of the two descents.
+  template <class VisitSelf, class VisitTwin>
+  void pairs_of_leaf_with_twin(int i, const std::vector<char>& wanted, const TriangleBvh& twin,
+                               VisitSelf&& visit_self, VisitTwin&& visit_twin) const {
+    const FloatBox& b = item_box_[i];
+    if (!nodes_[0].box.overlaps(b) && !twin.nodes_[0].box.overlaps(b)) return;
+    int stack[128];  // one entry per level of the path plus one (depth below 72)
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (n.count > 0) {
+        for (int j = n.first; j < n.first + n.count; ++j) {
+          if (j != i && (i < j || !wanted[items_[j]]) && item_box_[j].overlaps(b) && !slabs_apart(i, *this, j))
+            visit_self(items_[i], items_[j]);
+          if (twin.item_box_[j].overlaps(b) && !slabs_apart(i, twin, j)) visit_twin(items_[i], twin.items_[j]);
+        }
+      } else {
+        for (const int child : {n.first, n.first + n.left_nodes})
+          if (nodes_[child].box.overlaps(b) || twin.nodes_[child].box.overlaps(b)) stack[top++] = child;
+      }
+    }
   }
 
   // Which of two nodes the pair traversals split: the larger by the sum of its box's
