@@ -430,23 +430,32 @@ class TriangleBvh {
     });
   }
 
-  // visit(j) for the leaf position j of every item whose box overlaps b.
-  template <class Visit>
-  void for_each_leaf_overlapping(const FloatBox& b, Visit&& visit) const {
-    if (nodes_.empty() || !nodes_[0].box.overlaps(b)) return;
+  // visit(j) for the leaf position j of every item of the leaves reached from the root
+  // through nodes n with enter(n) (the root's included).
+  template <class Enter, class Visit>
+  void for_each_leaf_entered(Enter&& enter, Visit&& visit) const {
+    if (nodes_.empty() || !enter(0)) return;
     int stack[128];  // one entry per level of the path plus one (depth below 72)
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
       const Node& n = nodes_[stack[--top]];
       if (n.count > 0) {
-        for (int j = n.first; j < n.first + n.count; ++j)
-          if (item_box_[j].overlaps(b)) visit(j);
+        for (int j = n.first; j < n.first + n.count; ++j) visit(j);
       } else {
         for (const int child : {n.first, n.first + n.left_nodes})
-          if (nodes_[child].box.overlaps(b)) stack[top++] = child;
+          if (enter(child)) stack[top++] = child;
       }
     }
+  }
+
+  // visit(j) for the leaf position j of every item whose box overlaps b.
+  template <class Visit>
+  void for_each_leaf_overlapping(const FloatBox& b, Visit&& visit) const {
+    for_each_leaf_entered([&](int node) { return nodes_[node].box.overlaps(b); },
+                          [&](int j) {
+                            if (item_box_[j].overlaps(b)) visit(j);
+                          });
   }
 
   // Whether the self traversals visit the items at leaf positions i and j: one of them
@@ -481,23 +490,13 @@ class TriangleBvh {
   void pairs_of_leaf_with_twin(int i, const std::vector<char>& wanted, const TriangleBvh& twin,
                                VisitSelf&& visit_self, VisitTwin&& visit_twin) const {
     const FloatBox& b = item_box_[i];
-    if (!nodes_[0].box.overlaps(b) && !twin.nodes_[0].box.overlaps(b)) return;
-    int stack[128];  // one entry per level of the path plus one (depth below 72)
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& n = nodes_[stack[--top]];
-      if (n.count > 0) {
-        for (int j = n.first; j < n.first + n.count; ++j) {
+    for_each_leaf_entered(
+        [&](int node) { return nodes_[node].box.overlaps(b) || twin.nodes_[node].box.overlaps(b); },
+        [&](int j) {
           if (j != i && (i < j || !wanted[items_[j]]) && item_box_[j].overlaps(b) && !slabs_apart(i, *this, j))
             visit_self(items_[i], items_[j]);
           if (twin.item_box_[j].overlaps(b) && !slabs_apart(i, twin, j)) visit_twin(items_[i], twin.items_[j]);
-        }
-      } else {
-        for (const int child : {n.first, n.first + n.left_nodes})
-          if (nodes_[child].box.overlaps(b) || twin.nodes_[child].box.overlaps(b)) stack[top++] = child;
-      }
-    }
+        });
   }
 
   // Which of two nodes the pair traversals split: the larger by the sum of its box's
