@@ -169,6 +169,7 @@ struct SubdivisionStats {
   int floors_raised = 0;      // cell centres that raised the pool's floor
   int floors_raised_unlimited = 0;  // of them, while no direction beat the constrained optimum
   int closed = 0;             // cells left unrefined once all their site subsets were enumerated
+  int dropped_by_hint = 0;    // cells dropped by their parent's nearest arc alone (refine)
 };
 
 class SiteSubdivision {
@@ -263,8 +264,14 @@ class SiteSubdivision {
   void refine_roots();
   // `invisible`: the cell lies in a set-aside one, so it is invisible below V_min all
   // over whatever its own bound says.
+  // `hint`: an arc near the cell (the parent's nearest one), or -1. D is at most the
+  // distance to any arc, so the cell is dropped at once when that arc is nearer than the
+  // threshold allows, before the distances to all the kept arcs are taken.
   void refine(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
-              int parent_sites, int stable_levels, bool invisible = false);
+              int parent_sites, int stable_levels, bool invisible = false, int hint = -1);
+  // Cosine of the distance from c to arc i: to its great circle where the foot of c
+  // lies in the arc (c in both of its lunes), to its nearer end elsewhere.
+  double arc_cosine(const Vec3& c, int i) const;
   // Refines the set-aside cells, the one that may reach the highest D first, until the
   // pool is limited (its remaining cells are set aside again) or none is left. Their
   // leaves count as invisible all over: none is searched for constraint circles.

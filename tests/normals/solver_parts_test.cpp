@@ -160,6 +160,15 @@ TEST(SiteSubdivision, ClosedCellsLeaveTheEnumerationOptimum) {
   EXPECT_GT(check_fans_where_counted(6262, {30, 40}, 20, &detail::SubdivisionStats::closed), 50);
 }
 
+// A child cell whose parent's nearest arc is nearer than the threshold allows is dropped
+// on that arc's distance alone, before the distances to all the kept arcs are taken. D
+// is at most the distance to any arc, so the optimum, the status and the tie-broken
+// direction stay the enumeration's.
+TEST(SiteSubdivision, CellsDroppedByTheirParentsNearestArcLeaveTheEnumerationOptimum) {
+  // It fires on most of the CAD-like fans of valence 20 and 30 (93 of these 120).
+  EXPECT_GT(check_fans_where_counted(7373, {20, 30}, 5, &detail::SubdivisionStats::dropped_by_hint), 40);
+}
+
 // The pool's exact D at a direction agrees with the reference distance to the link, and
 // its fluid side with the crossing-parity reference, on random directions and on the
 // directions where two features nearly tie: the bisectors of link-vertex pairs and of
