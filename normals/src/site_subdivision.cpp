@@ -209,14 +209,6 @@ void SiteSubdivision::refine_roots() {
     refine(make_cell(chart, -1.0, -1.0, 2.0), 0, k_, k_, 2 * k_, 0, -1, 0);
 }
 
-double SiteSubdivision::arc_cosine(const Vec3& c, int i) const {
-  if (dot(c, lune1_[i]) >= 0.0 && dot(c, lune2_[i]) >= 0.0) {
-    const double cf = dot(c, g_.face_normals[i]);
-    return std::sqrt(std::max(0.0, 1.0 - cf * cf));
-  }
-  return std::max(dot(c, g_.arc_start(i)), dot(c, g_.arc_end(i)));
-}
-
 void SiteSubdivision::refine(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end,
                              int depth, int parent_sites, int stable_levels, bool invisible, int hint) {
   ++stats_.cells;

@@ -270,8 +270,15 @@ class SiteSubdivision {
   void refine(const Cell& cell, int arcs_begin, int arcs_end, int faces_begin, int faces_end, int depth,
               int parent_sites, int stable_levels, bool invisible = false, int hint = -1);
   // Cosine of the distance from c to arc i: to its great circle where the foot of c
-  // lies in the arc (c in both of its lunes), to its nearer end elsewhere.
-  double arc_cosine(const Vec3& c, int i) const;
+  // lies in the arc (c in both of its lunes), to its nearer end elsewhere. Defined here
+  // to be inlined into refine's scan (out of line, the calls cost 7 % of a ridge fan).
+  double arc_cosine(const Vec3& c, int i) const {
+    if (dot(c, lune1_[i]) >= 0.0 && dot(c, lune2_[i]) >= 0.0) {
+      const double cf = dot(c, g_.face_normals[i]);
+      return std::sqrt(std::max(0.0, 1.0 - cf * cf));
+    }
+    return std::max(dot(c, g_.arc_start(i)), dot(c, g_.arc_end(i)));
+  }
   // Refines the set-aside cells, the one that may reach the highest D first, until the
   // pool is limited (its remaining cells are set aside again) or none is left. Their
   // leaves count as invisible all over: none is searched for constraint circles.
