@@ -511,7 +511,11 @@ bool SiteSubdivision::pair_bound_below(const Vec3& c, double rho) {
   const int n = static_cast<int>(near_.size());
   for (int a = 0; a < n; ++a)
     for (int b = a + 1; b < n && near_[a].first + near_[b].first > pair_sum; ++b) {
-      if (pair_cap_cosine(c, cr, sr, g_.dirs[near_[a].second], g_.dirs[near_[b].second]) > level) {
+      const Vec3& u_a = g_.dirs[near_[a].second];
+      const Vec3& u_b = g_.dirs[near_[b].second];
+      // Most pairs fail, and are screened out without a root.
+      if (pair_cap_certainly_below(0.5 * (near_[a].first + near_[b].first), cr, sr, u_a, u_b, level)) continue;
+      if (pair_cap_cosine(c, cr, sr, u_a, u_b) > level) {
         ++pair_drops_;
         return true;
       }

@@ -74,6 +74,23 @@ inline double pair_cap_cosine(const Vec3& c, double cos_rho, double sin_rho, con
   return dot(c, q) >= 0.0 ? cap_min_dot(c, cos_rho, sin_rho, q) : -2.0;
 }
 
+// Allowance of pair_cap_certainly_below: its squares of values below 2 carry rounding
+// errors of a few 1e-16, and it answers true only where the bound lies kPairScreen / 3
+// below the level, several times pair_cap_cosine's own rounding.
+constexpr double kPairScreen = 1e-14;
+
+// Whether pair_cap_cosine(c, cos_rho, sin_rho, u_a, u_b) is certainly at most `level`,
+// decided without a root from x = c.q (q = (u_a + u_b) / 2; the mean of c.u_a and c.u_b
+// will do): where c.q >= 0 the bound is level + l - s with l = x cos_rho - level and
+// s = |c x q| sin_rho, |c x q|^2 = |q|^2 - x^2 and |q|^2 = (1 + u_a.u_b) / 2. As |l| < 2
+// and s <= 1, l^2 < s^2 - kPairScreen gives s - |l| > kPairScreen / 3, so the bound lies
+// that far below level (elsewhere it is -2). False says nothing.
+inline bool pair_cap_certainly_below(double x, double cos_rho, double sin_rho, const Vec3& u_a, const Vec3& u_b,
+                                     double level) {
+  const double l = x * cos_rho - level;
+  return l * l < (0.5 * (1.0 + dot(u_a, u_b)) - x * x) * sin_rho * sin_rho - kPairScreen;
+}
+
 // Whether no direction n of the cap B(c, rho) (c unit) has n.f_a + n.f_b >= level, so
 // that none has both n.f_a and n.f_b at level / 2 or above: on the cap
 // n.(f_a + f_b) <= c.(f_a + f_b) + rho |f_a + f_b| (the chord is at most the angle). The

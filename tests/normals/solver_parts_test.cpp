@@ -306,6 +306,42 @@ TEST(SiteSubdivision, PairBoundHoldsOnEverySampledDirectionOfTheCap) {
   EXPECT_GT(bounded, 1500);
 }
 
+// The pair bound's screen says "below the level" only where pair_cap_cosine is at most
+// the level, and says it wherever the bound lies clearly below (its squares then differ
+// by far more than its allowance), with levels at and around the bound itself.
+TEST(SiteSubdivision, PairBoundScreenRejectsOnlyPairsWhoseBoundIsBelowTheLevel) {
+  std::mt19937 rng(37);
+  std::normal_distribution<double> nd;
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  auto random_unit = [&]() { return normalized(Vec3{nd(rng), nd(rng), nd(rng)}); };
+  const double offsets[] = {0.0, 1e-15, -1e-15, 1e-13, -1e-13, 1e-9, -1e-9, 1e-3, -1e-3, 0.3, -0.3};
+  int rejected = 0, clear = 0;
+  for (int t = 0; t < 4000; ++t) {
+    const Vec3 c = random_unit(), a = random_unit();
+    const Vec3 b = t % 2 == 0 ? random_unit() : normalized(-a + 1e-3 * u01(rng) * random_unit());
+    const double rho = t % 4 < 2 ? 0.5 * u01(rng) : 1e-3 * u01(rng);
+    const double cr = std::cos(rho), sr = std::sin(rho);
+    const double bound = detail::pair_cap_cosine(c, cr, sr, a, b);
+    const double x = 0.5 * (dot(c, a) + dot(c, b));
+    for (double offset : offsets) {
+      const double level = bound + offset;
+      const bool below = detail::pair_cap_certainly_below(x, cr, sr, a, b, level);
+      if (below) {
+        ++rejected;
+        ASSERT_LE(bound, level) << "pair " << t << " offset " << offset;
+      }
+      // Clearly below: the bound beats the level by 1e-6 with l = x cos(rho) - level
+      // above 1e-4, so that s^2 - l^2 exceeds the allowance a hundred times.
+      if (bound != -2.0 && level - bound > 1e-6 && x * cr - level > 1e-4) {
+        ++clear;
+        EXPECT_TRUE(below) << "pair " << t << " offset " << offset;
+      }
+    }
+  }
+  EXPECT_GT(rejected, 2000);
+  EXPECT_GT(clear, 500);
+}
+
 // The subdivision counts a link vertex w as a site of a cell only where the cell meets
 // its wedge {n.arc_end_lune(in) <= 0, n.arc_start_lune(out) <= 0}: outside it, one of
 // w's two arcs has a point nearer than w, so w generates no candidate there. Checked
