@@ -643,9 +643,10 @@ TEST(LayerAssembly, CellTypesFollowHowManyColumnsGrow) {
 }
 
 TEST(LayerAssembly, CellsOfAFrontOfManyElementsFollowTheElementOrder) {
-  // 9,800 wall triangles: the layer's cells are built in blocks of elements, and the
-  // mesh must be the one an element-by-element loop builds (the oracle below).
-  const TriSurface wall = flat_grid(70);
+  // 39,200 wall triangles: the layer's cells are built in blocks of elements, a few
+  // blocks at a time, and the mesh must be the one an element-by-element loop builds
+  // (the oracle below).
+  const TriSurface wall = flat_grid(140);
   const WallTopology topo = build_wall_topology(wall);
   const ExtrusionParams p = test::growth_params(3, 0.1, 1.0);
   const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
@@ -682,7 +683,7 @@ TEST(LayerAssembly, CellsOfAFrontOfManyElementsFollowTheElementOrder) {
   }
   VolumeMesh m = a.take_mesh();
   a.attach_arrays(c, &m);
-  ASSERT_GT(types.size(), 2u * 4096u);
+  ASSERT_GT(layout.elements.size(), 2u * 8u * 2048u);  // more than two waves of eight blocks a layer
   EXPECT_EQ(m.cell_types, types);
   EXPECT_EQ(m.offsets, offsets);
   ASSERT_EQ(m.connectivity.size(), ids.size());
