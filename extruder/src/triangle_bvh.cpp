@@ -200,6 +200,32 @@ void TriangleBvh::refit_node(int i) {
   }
 }
 
+TriangleBvh::LayoutIndex TriangleBvh::layout_index() const {
+  LayoutIndex x;
+  x.leaf.resize(items_.size());
+  x.parent.assign(nodes_.size(), -1);
+  for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
+    const Node& nd = nodes_[i];
+    if (nd.count > 0) {
+      for (int j = nd.first; j < nd.first + nd.count; ++j) x.leaf[items_[j]] = i;
+    } else {
+      x.parent[nd.first] = x.parent[nd.first + nd.left_nodes] = i;
+    }
+  }
+  return x;
+}
+
+void TriangleBvh::refit_ancestors(const std::vector<int>& items, const LayoutIndex& index) {
+  if (items.empty()) return;
+  // Each path stops at the first node already marked, whose ancestors are marked too.
+  std::vector<char> marked(nodes_.size(), 0);
+  for (int item : items)
+    for (int i = index.leaf[item]; i >= 0 && !marked[i]; i = index.parent[i]) marked[i] = 1;
+  // Preorder puts every child after its parent: a reverse sweep refits children first.
+  for (int i = static_cast<int>(nodes_.size()) - 1; i >= 0; --i)
+    if (marked[i]) refit_node(i);
+}
+
 void TriangleBvh::refit_nodes() {
   if (!nodes_.empty()) refit_subtree(0, static_cast<int>(nodes_.size()));
 }

@@ -390,6 +390,44 @@ TEST(TriangleBvhPairs, PartlyRefittedTreesFollowTheMovedTrianglesOnly) {
   }
 }
 
+TEST(TriangleBvhPairs, ListedRefitsFollowTheMovedTrianglesLikeFlaggedOnes) {
+  // The checker's repair attempts refit only the listed triangles and their ancestors
+  // (refit_triangles_listed). Over several passes that move scattered triangles far,
+  // the tree must find the same pairs as one refitted by flags, and as brute force.
+  std::mt19937 rng(31);
+  const std::vector<Tri> wall = sliver_triangles(rng, 12, 0.0);
+  std::vector<Tri> front = sliver_triangles(rng, 12, 0.08);
+  const TriangleBvh tw = slabbed_tree(wall);
+  auto corners = [&](int i, Vec3* c) { std::copy(front[i].begin(), front[i].end(), c); };
+  TriangleBvh listed, flagged;
+  listed.build_triangles(static_cast<int>(front.size()), corners);
+  flagged = listed;
+  const TriangleBvh::LayoutIndex index = listed.layout_index();
+  const std::vector<char> all(front.size(), 1);
+  for (int pass = 1; pass <= 4; ++pass) {
+    std::vector<char> moved(front.size(), 0);
+    std::vector<int> list;
+    for (std::size_t i = pass; i < front.size(); i += 5 + 2 * pass) {
+      moved[i] = 1;
+      list.push_back(static_cast<int>(i));
+      for (Vec3& p : front[i]) p = p + Vec3{0.4 * pass, -0.3, 0.1 * pass};
+    }
+    listed.refit_triangles_listed(list, index, corners);
+    flagged.refit_triangles_where(&moved, corners);
+    Visited by_list, by_flags;
+    std::vector<char> nodes;
+    listed.mark_nodes(all, &nodes);
+    listed.for_each_overlapping_pair(all, nodes, tw, [&](int i, int j) { by_list.add(i, j); });
+    flagged.mark_nodes(all, &nodes);
+    flagged.for_each_overlapping_pair(all, nodes, tw, [&](int i, int j) { by_flags.add(i, j); });
+    EXPECT_EQ(by_list.pairs, by_flags.pairs) << "pass " << pass;
+    const std::vector<Box> bf = boxes_of(front), bw = boxes_of(wall);
+    EXPECT_TRUE(between(by_list.pairs, without_apart(brute_pairs(bf, all, bw), front, wall),
+                        without_apart(brute_pairs(grown(bf), all, grown(bw)), front, wall)))
+        << "pass " << pass;
+  }
+}
+
 TEST(TriangleBvhPairs, TreesBeyondTheSlabLimitKeepNoSlabs) {
   // Two slivers whose boxes overlap and whose slabs are apart, among kMaxSlabItems
   // small triangles far from them: past the limit the pair is visited.

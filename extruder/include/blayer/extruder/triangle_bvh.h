@@ -188,6 +188,32 @@ class TriangleBvh {
     refit_nodes();
   }
 
+  // Where the items and nodes of a tree's layout sit, for refits of a few items: per
+  // item its leaf node, per node its parent (-1 at the root). Valid for every tree of
+  // the same layout (copies and refits of this one).
+  struct LayoutIndex {
+    std::vector<int> leaf, parent;
+  };
+  LayoutIndex layout_index() const;
+  // refit_triangles_where for the listed items (each once) on a tree that already holds
+  // the other items' boxes and slabs: only the listed items and their ancestors are
+  // recomputed, so the nodes end as a full refit leaves them (a union of float boxes
+  // is exact). index: this layout's.
+  template <class CornersOf>
+  void refit_triangles_listed(const std::vector<int>& items, const LayoutIndex& index, CornersOf&& corners_of) {
+    const bool slabs = !item_slabs_.empty();
+    tbb::parallel_for(std::size_t(0), items.size(), [&](std::size_t k) {
+      const Node& leaf = nodes_[index.leaf[items[k]]];
+      int i = leaf.first;
+      while (items_[i] != items[k]) ++i;
+      Vec3 c[3];
+      corners_of(items_[i], c);
+      item_box_[i] = FloatBox::enclosing(Box::of_triangle(c[0], c[1], c[2]));
+      if (slabs) item_slabs_[i] = DiagonalSlabs::of_triangle(c[0], c[1], c[2]);
+    });
+    refit_ancestors(items, index);
+  }
+
   bool empty() const { return nodes_.empty(); }
 
   // Per node, a box of another value of its items (unit normals, directions):
@@ -421,6 +447,8 @@ class TriangleBvh {
   // The same for the subtree of node root, whose nodes are [root, end).
   void refit_subtree(int root, int end);
   void refit_node(int i);
+  // The leaves of the listed items and every node above them, children first.
+  void refit_ancestors(const std::vector<int>& items, const LayoutIndex& index);
 
   // at_wanted(i) for the leaf position i of every wanted item, in parallel.
   template <class AtWanted>
