@@ -58,6 +58,40 @@ Vec3 layer_cell_centre(const LayerCellFaces& c, FaceGeometry* geo) {
   return cell_geometry(geo, c.n).centre;
 }
 
+// f(i) in parallel for the listed indices, or for every index in [0, n).
+template <class F>
+void for_listed_or_all(bool listed, const std::vector<int>& list, int n, F&& f) {
+  if (listed)
+    tbb::parallel_for(std::size_t(0), list.size(), [&](std::size_t k) { f(list[k]); });
+  else
+    tbb::parallel_for(0, n, f);
+}
+
+// Clears the flags of the listed indices, or all of them, and the list.
+void clear_flags(bool listed, std::vector<int>* list, std::vector<char>* flags) {
+  if (listed)
+    for (int i : *list) (*flags)[i] = 0;
+  else
+    std::fill(flags->begin(), flags->end(), 0);
+  list->clear();
+}
+
+// Whether every element's columns are those of its front triangles (fan_layout.h: a
+// strip's two triangles, else the element's own): an element then moved exactly when
+// one of its triangles did.
+bool elements_covered_by_their_triangles(const ColumnLayout& layout) {
+  std::vector<unsigned char> covered(layout.elements.size(), 0);
+  for (std::size_t f = 0; f < layout.front.triangles.size(); ++f) {
+    const LayerElement& el = layout.elements[layout.element_of_triangle[f]];
+    for (int c : layout.front.triangles[f])
+      for (int i = 0; i < el.n_columns(); ++i)
+        if (el.column[i] == c) covered[layout.element_of_triangle[f]] |= 1 << i;
+  }
+  for (std::size_t e = 0; e < layout.elements.size(); ++e)
+    if (covered[e] != (1 << layout.elements[e].n_columns()) - 1) return false;
+  return true;
+}
+
 }  // namespace
 
 FrontChecker::FrontChecker(const TriSurface& wall, const WallTopology& topo, const ExtrusionParams& params)
@@ -85,6 +119,7 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
   cap_bad_.assign(nf_, 0);
   side_face_bad_.assign(3 * static_cast<std::size_t>(nf_), 0);
   side_geo_.resize(3 * static_cast<std::size_t>(nf_));
+  acc_listed_.assign(nf_, 0);
 }
 
 // The wall triangle across each edge of a wall triangle's cell (core/edge_topology.h on
@@ -195,8 +230,10 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
   new_tree_ = cur_tree_;
   grows_.assign(nc_, 0);
   prev_grows_.assign(nc_, 0);
-  moved_.assign(nc_, 0);
   prev_next_.resize(nc_);
+  column_triangles_ = vertex_triangles(layout_->front);
+  BLAYER_ASSERT_MSG(elements_covered_by_their_triangles(*layout_),
+                    "every element's columns are those of its front triangles");
   for (auto* v : {&bad_cell_, &invalid_, &elem_moved_}) v->assign(ne_, 0);
   for (auto* v : {&collided_, &tri_moved_, &tri_grows_, &query_}) v->assign(nt_, 0);
   wall_tris_.resize(nf_);
@@ -204,6 +241,7 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
   new_tris_.resize(nt_);
   cur_is_wall_.assign(nt_, 0);
   if (check_collisions_) {
+    tree_index_ = new_tree_.layout_index();
     soup_.resize(static_cast<std::size_t>(nv_) + 2 * static_cast<std::size_t>(nc_));
     std::copy(wall.points.begin(), wall.points.end(), soup_.begin());
     tbb::parallel_for(0, nf_, [&](int f) {
@@ -270,6 +308,7 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
   std::fill(bad_cell_.begin(), bad_cell_.end(), 0);
   std::fill(invalid_.begin(), invalid_.end(), 0);
   std::fill(collided_.begin(), collided_.end(), 0);
+  collided_list_.clear();
   if (limits_.any()) {
     below_known_ = k > 0 && previous_layer_ == k - 1;
     if (below_known_) cells_below(k, top, layers);
@@ -312,7 +351,7 @@ void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<V
     if (id < n_cur) return top[id - nv_];
     return next[id - n_cur];
   };
-  tbb::parallel_for(0, ne_, [&](int e) {
+  for_listed_or_all(listed_, elem_list_, ne_, [&](int e) {
     if (!elem_moved_[e]) return;
     LayerCell cells[2];
     invalid_[e] = 0;
@@ -329,7 +368,11 @@ void FrontChecker::check_cells(const std::vector<Vec3>& top, const std::vector<V
     check_acceptance(top, next);
     return;
   }
-  std::copy(invalid_.begin(), invalid_.end(), bad_cell_.begin());
+  if (!listed_) {
+    std::copy(invalid_.begin(), invalid_.end(), bad_cell_.begin());
+    return;
+  }
+  for (int e : elem_list_) bad_cell_[e] = invalid_[e];
 }
 
 // The solver-acceptance verdicts (see the header), in three passes: the centre of every
@@ -342,8 +385,8 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
     return {bool(grows_[t[0]]), bool(grows_[t[1]]), bool(grows_[t[2]])};
   };
   const FaceSide bottom_side = k_ == 0 ? FaceSide::kBoundary : below_known_ ? FaceSide::kInternal : FaceSide::kUnknown;
-  tbb::parallel_for(0, nf_, [&](int f) {
-    if (!tri_moved_[f]) return;
+  for_listed_or_all(listed_, tri_list_, nf_, [&](int f) {
+    if (f >= nf_ || !tri_moved_[f]) return;
     const Triangle& t = tris[f];
     const LayerCellFaces c = layer_cell_faces(t, top, next, growing(t));
     cap_bad_[f] = 0;
@@ -356,7 +399,8 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
         judge_face(c.face[0], geo[0], centre_[f], bottom_side, below_centre_[f], limits_) != AcceptanceFailure::kNone ||
         judge_face(c.face[1], geo[1], centre_[f], FaceSide::kBoundary, centre_[f], limits_) != AcceptanceFailure::kNone;
   });
-  tbb::parallel_for(0, nf_, [&](int f) {
+  if (listed_) list_acceptance_triangles();
+  for_listed_or_all(listed_, acc_list_, nf_, [&](int f) {
     const int* nb = &edge_neighbour_[3 * f];
     bool dirty = tri_moved_[f];
     for (int e = 0; e < 3; ++e) dirty = dirty || (nb[e] >= 0 && tri_moved_[nb[e]]);
@@ -378,32 +422,87 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
       side_face_bad_[slot] = judge_face(c.face[i], geo, centre_[f], side, other, limits) != AcceptanceFailure::kNone;
     }
   });
-  tbb::parallel_for(0, nf_, [&](int f) {
+  for_listed_or_all(listed_, acc_list_, nf_, [&](int f) {
     const int* slot = &side_slot_[3 * f];
     bad_cell_[f] = invalid_[f] || cap_bad_[f] || side_face_bad_[slot[0]] || side_face_bad_[slot[1]] ||
                    side_face_bad_[slot[2]];
   });
   // Fan strips and corner patches: the exact test only.
-  std::copy(invalid_.begin() + nf_, invalid_.end(), bad_cell_.begin() + nf_);
+  if (!listed_) {
+    std::copy(invalid_.begin() + nf_, invalid_.end(), bad_cell_.begin() + nf_);
+    return;
+  }
+  for (int e : elem_list_)
+    if (e >= nf_) bad_cell_[e] = invalid_[e];
+  for (int f : acc_list_) acc_listed_[f] = 0;
+}
+
+// A side face's verdict changes only when a column of either of its cells moved, a
+// cap's or cell's only when its own did.
+void FrontChecker::list_acceptance_triangles() {
+  acc_list_.clear();
+  auto add = [&](int f) {
+    if (acc_listed_[f]) return;
+    acc_listed_[f] = 1;
+    acc_list_.push_back(f);
+  };
+  for (int f : tri_list_) {
+    if (f >= nf_) continue;
+    add(f);
+    for (int e = 0; e < 3; ++e)
+      if (edge_neighbour_[3 * f + e] >= 0) add(edge_neighbour_[3 * f + e]);
+  }
+  for (int e : elem_list_)
+    if (e < nf_) add(e);
 }
 
 void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   const std::int64_t n_cur = static_cast<std::int64_t>(nv_) + nc_;
   auto new_id = [&](int c) -> std::int64_t { return grows_[c] ? n_cur + c : cur_id(c); };
-  std::copy(next.begin(), next.end(), soup_.begin() + n_cur);
-  tbb::parallel_for(0, nt_, [&](int f) {
+  if (listed_) {
+    for (int v : moved_list_) soup_[n_cur + v] = next[v];
+  } else {
+    std::copy(next.begin(), next.end(), soup_.begin() + n_cur);
+  }
+  for_listed_or_all(listed_, tri_list_, nt_, [&](int f) {
     const Triangle& t = front_[f];
     new_tris_[f] = {new_id(t[0]), new_id(t[1]), new_id(t[2])};
     // A triangle naming a point twice is no triangle: it is neither tested nor a partner.
     if (names_a_point_twice(new_tris_[f])) tri_grows_[f] = 0;
-    query_[f] = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
-    if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
   });
+  // The queried triangles: those that grow and moved or crossed in the attempt before.
+  // The crossings are then cleared (every crossed triangle is either queried or no
+  // longer grows) and found again.
+  if (listed_) {
+    clear_flags(query_listed_, &query_list_, &query_);
+    auto query = [&](int f) {
+      if (query_[f]) return;
+      const bool q = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
+      if (q) {
+        query_[f] = 1;
+        query_list_.push_back(f);
+      }
+      if (q || !tri_grows_[f]) collided_[f] = 0;
+    };
+    for (int f : tri_list_) query(f);
+    for (int f : collided_list_) query(f);
+  } else {
+    tbb::parallel_for(0, nt_, [&](int f) {
+      query_[f] = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
+      if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
+    });
+  }
+  query_listed_ = listed_;
+  collided_list_.clear();
   // With the slabs: the trees skip the pairs whose slabs are apart (diagonal_slabs.h).
   // Only the triangles that moved since the layer's previous attempt (all in its first).
-  new_tree_.refit_triangles_where(new_tree_layer_ == k_ ? &tri_moved_ : nullptr, [&](int f, Vec3* c) {
+  auto corners = [&](int f, Vec3* c) {
     for (int i = 0; i < 3; ++i) c[i] = soup_[new_tris_[f][i]];
-  });
+  };
+  if (listed_ && new_tree_layer_ == k_)
+    new_tree_.refit_triangles_listed(tri_list_, tree_index_, corners);
+  else
+    new_tree_.refit_triangles_where(new_tree_layer_ == k_ ? &tri_moved_ : nullptr, corners);
   new_tree_layer_ = k_;
   for (auto& l : crossing_) l.clear();
   // Every pair is found by descending two trees together (TriangleBvh): the new front
@@ -430,28 +529,20 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   else
     new_tree_.for_each_overlapping_pair(query_, query_nodes_, new_pair);
   for (const auto& l : crossing_)
-    for (int f : l) collided_[f] = 1;
+    for (int f : l)
+      if (!collided_[f]) {
+        collided_[f] = 1;
+        collided_list_.push_back(f);
+      }
 }
 
 void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::vector<Vec3>& next,
                          const std::vector<char>& grows, FrontVerdict* out) {
   grows_ = grows;
-  parallel_vertices(nc_, [&](int v) {
-    moved_[v] = attempt == 0 || grows_[v] != prev_grows_[v] || !(next[v] == prev_next_[v]);
-  });
-  prev_next_ = next;
-  prev_grows_ = grows_;
-  tbb::parallel_for(0, nt_, [&](int f) {
-    const Triangle& t = front_[f];
-    tri_moved_[f] = moved_[t[0]] || moved_[t[1]] || moved_[t[2]];
-    tri_grows_[f] = grows_[t[0]] || grows_[t[1]] || grows_[t[2]];
-  });
-  tbb::parallel_for(0, ne_, [&](int e) {
-    const LayerElement& el = elements_[e];
-    bool m = false;
-    for (int i = 0; i < el.n_columns(); ++i) m = m || moved_[el.column[i]];
-    elem_moved_[e] = m;
-  });
+  if (attempt == 0)
+    flag_every_column_moved(next);
+  else
+    list_changes(next);
   check_cells(top, next);
   if (check_collisions_) check_intersections(next);
   if (plane_) check_symmetry_side(next);
@@ -484,11 +575,55 @@ void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::v
   out->any_bad = std::find(out->bad.begin(), out->bad.end(), 1) != out->bad.end();
 }
 
+void FrontChecker::flag_every_column_moved(const std::vector<Vec3>& next) {
+  prev_next_ = next;
+  prev_grows_ = grows_;
+  std::fill(tri_moved_.begin(), tri_moved_.end(), 1);
+  std::fill(elem_moved_.begin(), elem_moved_.end(), 1);
+  tbb::parallel_for(0, nt_, [&](int f) {
+    const Triangle& t = front_[f];
+    tri_grows_[f] = grows_[t[0]] || grows_[t[1]] || grows_[t[2]];
+  });
+  listed_ = false;
+}
+
+void FrontChecker::list_changes(const std::vector<Vec3>& next) {
+  clear_flags(listed_, &tri_list_, &tri_moved_);
+  clear_flags(listed_, &elem_list_, &elem_moved_);
+  moved_list_.clear();
+  for (int v = 0; v < nc_; ++v)
+    if (grows_[v] != prev_grows_[v] || !(next[v] == prev_next_[v])) {
+      moved_list_.push_back(v);
+      prev_grows_[v] = grows_[v];
+      prev_next_[v] = next[v];
+    }
+  for (int v : moved_list_)
+    for (const int* f = column_triangles_.begin(v); f != column_triangles_.end(v); ++f)
+      if (!tri_moved_[*f]) {
+        tri_moved_[*f] = 1;
+        tri_list_.push_back(*f);
+      }
+  for (int f : tri_list_) {
+    // Only a moved column can have changed growing state.
+    const Triangle& t = front_[f];
+    tri_grows_[f] = grows_[t[0]] || grows_[t[1]] || grows_[t[2]];
+    const int e = element_of_triangle_[f];
+    if (!elem_moved_[e]) {
+      elem_moved_[e] = 1;
+      elem_list_.push_back(e);
+    }
+  }
+  listed_ = true;
+}
+
 void FrontChecker::check_symmetry_side(const std::vector<Vec3>& next) {
   // A triangle whose points all lie on the model's side (or in the plane, for the
-  // columns on it) lies there too: the half space is convex.
-  side_bad_.assign(nt_, 0);
-  tbb::parallel_for(0, nt_, [&](int f) {
+  // columns on it) lies there too: the half space is convex. A repair attempt re-tests
+  // the moved triangles.
+  const bool listed = listed_ && static_cast<int>(side_bad_.size()) == nt_;
+  if (!listed) side_bad_.assign(nt_, 0);
+  for_listed_or_all(listed, tri_list_, nt_, [&](int f) {
+    side_bad_[f] = 0;
     if (!tri_grows_[f]) return;
     for (int v : front_[f])
       if (grows_[v] && !on_plane_[v] && !(plane_->signed_distance(next[v]) > 0.0)) side_bad_[f] = 1;
@@ -515,6 +650,10 @@ void FrontChecker::release() {
   release(previous_bottom_);
   release(side_face_bad_);
   release(side_geo_);
+  release(column_triangles_);
+  release(tree_index_);
+  for (std::vector<int>* list : {&moved_list_, &tri_list_, &elem_list_, &query_list_, &collided_list_, &acc_list_})
+    release(*list);
 }
 
 }  // namespace blayer

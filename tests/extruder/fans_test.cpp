@@ -2,6 +2,7 @@
 // angles known in closed form), and extrusions with fans checked cell by cell.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -20,6 +21,7 @@
 #include "blayer/extruder/wall_planes.h"
 #include "blayer/extruder/wall_topology.h"
 #include "blayer/quality/layer_fidelity.h"
+#include "lcg.h"
 #include "test_surfaces.h"
 
 namespace blayer {
@@ -542,6 +544,89 @@ TEST(FanExtrusion, SolverLimitsJudgeTheWallTrianglesCellsOfAFannedFront) {
     EXPECT_EQ(l.front.points[c][2], 1.0) << "column " << c << " is not on the sheared face";
   }
   EXPECT_GT(n_bad, 0);
+}
+
+// A repair attempt re-tests only what changed since the attempt before: the triangles
+// and elements on the columns that moved or changed growing state, their neighbours'
+// shared faces, the triangles that crossed before. In the second layer of a fanned box
+// with a symmetry plane just below it, strict solver limits, columns jittered, pushed
+// through the box and off the plane's side and put back, and a triangle's columns
+// stopped and restarted, every attempt must end with the verdicts of a fresh check.
+TEST(FanExtrusion, RepairAttemptsEndWithTheVerdictsOfAFreshCheck) {
+  const TriSurface box = test_surfaces::box({0, 0, 0}, {1, 1, 1}, 4);
+  const ColumnLayout l = layout_of(box);
+  ASSERT_TRUE(l.has_fans());
+  const int nc = l.n_columns();
+  std::vector<Vec3> dir(nc);
+  for (int c = 0; c < nc; ++c) dir[c] = l.direction[c];
+  for (std::size_t f = 0; f < box.triangles.size(); ++f)
+    for (int c : l.front.triangles[f])
+      if (!l.in_fan[c]) dir[c] = unit_normal(box, static_cast<int>(f));
+  const double h = 0.01;
+  std::vector<Vec3> top(nc), next(nc);
+  for (int c = 0; c < nc; ++c) {
+    top[c] = l.front.points[c] + h * dir[c];
+    next[c] = top[c] + h * dir[c];
+  }
+  SymmetryPlane plane;  // z = -0.035, the model above: the bottom's new points at -0.02 pass
+  plane.axis = 2;
+  plane.offset = -0.035;
+  const WallTopology topo = build_column_topology(l, plane);
+  ExtrusionParams p;
+  p.check_collisions = true;
+  p.solver_limits = AcceptanceLimits{5.0, 0.1, 0.3, 10.0, true, true};
+  const std::vector<int> layers(nc, 1);
+  std::vector<char> grows(nc, 1);
+  FrontChecker incremental(box, l, topo, p);
+  incremental.begin_layer(1, top, layers);
+  testing::Lcg rng(5);
+  auto column = [&] { return std::min(nc - 1, static_cast<int>(rng.uniform() * nc)); };
+  int below = 0;  // a column of the bottom face's interior
+  while (l.in_fan[below] || l.front.points[below][2] != 0.0) ++below;
+  std::vector<int> pushed;
+  Triangle stopped{};  // the columns of a wall triangle's cell, stopped and restarted
+  int attempts_with_collisions = 0, attempts_with_quality = 0;
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    if (attempt > 0) {
+      for (int m = 0; m < 8; ++m) {
+        const int c = column();
+        const Vec3 jitter{0.6 * (rng.uniform() - 0.5), 0.6 * (rng.uniform() - 0.5), 0.6 * (rng.uniform() - 0.5)};
+        next[c] = top[c] + h * ((0.5 + 3.0 * rng.uniform()) * dir[c] + jitter);
+      }
+      if (!pushed.empty() && attempt % 2 == 0) {  // put the last pushed column back
+        next[pushed.back()] = top[pushed.back()] + h * dir[pushed.back()];
+        pushed.pop_back();
+      } else {  // through the box, out past the opposite face
+        pushed.push_back(column());
+        next[pushed.back()] = top[pushed.back()] - 1.3 * dir[pushed.back()];
+      }
+      if (attempt == 2) next[below] = top[below] + 4.0 * h * dir[below];  // to z = -0.05
+      if (attempt == 5) next[below] = top[below] + h * dir[below];
+      if (attempt == 3)  // a stopped column's new point is its top (settle_layer)
+        for (int c : stopped = l.front.triangles[column() % box.triangles.size()]) {
+          grows[c] = 0;
+          next[c] = top[c];
+        }
+      if (attempt == 7)
+        for (int c : stopped) {
+          grows[c] = 1;
+          next[c] = top[c] + h * dir[c];
+        }
+    }
+    FrontVerdict inc, fresh;
+    incremental.check(attempt, top, next, grows, &inc);
+    FrontChecker full(box, l, topo, p);
+    full.begin_layer(1, top, layers);
+    full.check(0, top, next, grows, &fresh);
+    EXPECT_EQ(inc.bad, fresh.bad) << "attempt " << attempt;
+    EXPECT_EQ(inc.reason, fresh.reason) << "attempt " << attempt;
+    EXPECT_EQ(inc.bad_triangle, fresh.bad_triangle) << "attempt " << attempt;
+    attempts_with_collisions +=
+        std::count(fresh.reason.begin(), fresh.reason.end(), StopReason::kCollision) > 0;
+    attempts_with_quality += std::count(fresh.reason.begin(), fresh.reason.end(), StopReason::kQuality) > 0;
+  }
+  EXPECT_GE(attempts_with_collisions, 5) << "the pushed columns must cross other triangles";
+  EXPECT_GE(attempts_with_quality, 5) << "the limits must refuse some cells";
 }
 
 TEST(FanExtrusion, ThinSpanTrianglesOfACadWingSegmentKeepEveryFanAndLayer) {
