@@ -31,30 +31,31 @@ void lower_failing_columns(int k, const FrontVerdict& verdict, const WallTopolog
   const int nv = columns->size();
   std::vector<double> fraction(nv, 1.0);
   std::vector<StopReason> why(nv, StopReason::kNone);
-  for (int v = 0; v < nv; ++v) {
-    if (!(*grows)[v]) continue;
+  // Both passes change column v's plan, state and flags only: its columns in parallel.
+  parallel_vertices(nv, [&](int v) {
+    if (!(*grows)[v]) return;
     fraction[v] = plan->height(v, k) / start_height[v];
-    if (!verdict.bad[v]) continue;
+    if (!verdict.bad[v]) return;
     const double first = plan->height(v, 0);
     const bool at_floor = plan->height(v, k) <= first * (1.0 + kPlannedHeightRelTol);
     if (p.limit_policy == LimitPolicy::kTerminate || k == 0 || at_floor) {
       end_column_after(plan, v, k, verdict.reason[v]);
       columns->stop(v, verdict.reason[v]);
       (*grows)[v] = 0;
-      continue;
+      return;
     }
     fraction[v] = std::max(0.5 * plan->height(v, k), first) / start_height[v];
     why[v] = verdict.reason[v];
-  }
+  });
   smooth_downward(topo.vertex_neighbours, *grows, p.height_smoothing_rings, &fraction, &why);
-  for (int v = 0; v < nv; ++v) {
-    if (!(*grows)[v]) continue;
+  parallel_vertices(nv, [&](int v) {
+    if (!(*grows)[v]) return;
     const double h = std::max(fraction[v] * start_height[v], plan->height(v, 0));
     if (h < plan->height(v, k)) {
       lower_layer(plan, v, k, h, why[v]);
       (*lowered)[v] = 1;
     }
-  }
+  });
 }
 
 }  // namespace
