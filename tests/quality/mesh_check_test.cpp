@@ -409,6 +409,30 @@ TEST(MeshCheck, StructuralErrorsThrowInputError) {
   EXPECT_THROW(check_volume_mesh(short_offsets), InputError);
 }
 
+TEST(MeshCheck, AStructuralErrorNamesTheFirstIllFormedCell) {
+  // The cells are scanned in parallel: of several ill-formed cells far apart, the
+  // message names the first, as a scan in order does.
+  std::vector<double> z(50001);
+  for (std::size_t k = 0; k < z.size(); ++k) z[k] = 0.1 * static_cast<double>(k);
+  VolumeMesh m = prism_column(z);
+  auto message = [&] {
+    try {
+      check_volume_mesh(m);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  m.connectivity[6 * 41000 + 2] = -1;
+  m.connectivity[6 * 23456 + 4] = static_cast<PointId>(m.points.size());
+  m.connectivity[6 * 30000] = 1 << 30;
+  EXPECT_EQ(message(), "check_volume_mesh: cell 23456 uses node " + std::to_string(m.points.size()) +
+                           ", outside [0, " + std::to_string(m.points.size()) + ")");
+  m.connectivity[6 * 23456 + 4] = 0;
+  EXPECT_EQ(message(), "check_volume_mesh: cell 30000 uses node 1073741824, outside [0, " +
+                           std::to_string(m.points.size()) + ")");
+}
+
 TEST(MeshCheck, NonFinitePointMakesItsCellInvalid) {
   VolumeMesh m = prism_column({0.0, 1.0});
   m.points[4][0] = std::nan("");
