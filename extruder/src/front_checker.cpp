@@ -438,7 +438,8 @@ void FrontChecker::check_acceptance(const std::vector<Vec3>& top, const std::vec
 }
 
 // A side face's verdict changes only when a column of either of its cells moved, a
-// cap's or cell's only when its own did.
+// cap's or cell's only when its own did (wall triangle f's cell is element f, on the
+// same columns).
 void FrontChecker::list_acceptance_triangles() {
   acc_list_.clear();
   auto add = [&](int f) {
@@ -452,8 +453,6 @@ void FrontChecker::list_acceptance_triangles() {
     for (int e = 0; e < 3; ++e)
       if (edge_neighbour_[3 * f + e] >= 0) add(edge_neighbour_[3 * f + e]);
   }
-  for (int e : elem_list_)
-    if (e < nf_) add(e);
 }
 
 void FrontChecker::check_intersections(const std::vector<Vec3>& next) {

@@ -146,7 +146,7 @@ class FrontChecker {
   void flag_every_column_moved(const std::vector<Vec3>& next);
   void list_changes(const std::vector<Vec3>& next);
   // The wall triangles whose acceptance verdicts a repair attempt re-judges: the moved
-  // ones, their edge neighbours and those whose cell moved.
+  // ones and their edge neighbours.
   void list_acceptance_triangles();
   std::int64_t cur_id(int c) const { return (*layers_)[c] == 0 ? wall_point_[c] : nv_ + c; }
 
