@@ -495,6 +495,16 @@ TEST(FanExtrusion, BoxLayersAreValidConformingAndExactlyWallNormalAtTheEdges) {
   }
 }
 
+// The exact column directions of a fanned box: the fan points' own, and the face
+// normal for the columns of a face's interior.
+std::vector<Vec3> exact_directions(const TriSurface& box, const ColumnLayout& l) {
+  std::vector<Vec3> dir(l.direction.begin(), l.direction.end());
+  for (std::size_t f = 0; f < box.triangles.size(); ++f)
+    for (int c : l.front.triangles[f])
+      if (!l.in_fan[c]) dir[c] = unit_normal(box, static_cast<int>(f));
+  return dir;
+}
+
 // The solver-acceptance limits judge the wall triangles' cells of a fanned front: on a
 // box, one layer along the exact face and fan directions passes a tight boundary
 // skewness limit (right prisms: 0); shearing the top face's own columns keeps every
@@ -504,11 +514,7 @@ TEST(FanExtrusion, SolverLimitsJudgeTheWallTrianglesCellsOfAFannedFront) {
   const ColumnLayout l = layout_of(box);
   ASSERT_TRUE(l.has_fans());
   const int nc = l.n_columns();
-  std::vector<Vec3> dir(nc);
-  for (int c = 0; c < nc; ++c) dir[c] = l.direction[c];
-  for (std::size_t f = 0; f < box.triangles.size(); ++f)
-    for (int c : l.front.triangles[f])
-      if (!l.in_fan[c]) dir[c] = unit_normal(box, static_cast<int>(f));
+  const std::vector<Vec3> dir = exact_directions(box, l);
   const double h = 0.01;
   auto layer = [&](double shear) {
     std::vector<Vec3> next(nc);
@@ -557,11 +563,7 @@ TEST(FanExtrusion, RepairAttemptsEndWithTheVerdictsOfAFreshCheck) {
   const ColumnLayout l = layout_of(box);
   ASSERT_TRUE(l.has_fans());
   const int nc = l.n_columns();
-  std::vector<Vec3> dir(nc);
-  for (int c = 0; c < nc; ++c) dir[c] = l.direction[c];
-  for (std::size_t f = 0; f < box.triangles.size(); ++f)
-    for (int c : l.front.triangles[f])
-      if (!l.in_fan[c]) dir[c] = unit_normal(box, static_cast<int>(f));
+  const std::vector<Vec3> dir = exact_directions(box, l);
   const double h = 0.01;
   std::vector<Vec3> top(nc), next(nc);
   for (int c = 0; c < nc; ++c) {
