@@ -76,9 +76,10 @@ void clear_flags(bool listed, std::vector<int>* list, std::vector<char>* flags) 
   list->clear();
 }
 
-// Whether every element's columns are those of its front triangles (fan_layout.h: a
-// strip's two triangles, else the element's own): an element then moved exactly when
-// one of its triangles did.
+// Whether every column of an element is a corner of one of its front triangles
+// (fan_layout.h: a strip's two triangles, else the element's own): a moved column then
+// always moves a triangle of each of its elements, and the elements of the moved
+// triangles are all the moved ones.
 bool elements_covered_by_their_triangles(const ColumnLayout& layout) {
   std::vector<unsigned char> covered(layout.elements.size(), 0);
   for (std::size_t f = 0; f < layout.front.triangles.size(); ++f) {

@@ -31,7 +31,8 @@ void lower_failing_columns(int k, const FrontVerdict& verdict, const WallTopolog
   const int nv = columns->size();
   std::vector<double> fraction(nv, 1.0);
   std::vector<StopReason> why(nv, StopReason::kNone);
-  // Both passes change column v's plan, state and flags only: its columns in parallel.
+  // Each pass writes only column v's own plan, state and flags: the columns run in
+  // parallel.
   parallel_vertices(nv, [&](int v) {
     if (!(*grows)[v]) return;
     fraction[v] = plan->height(v, k) / start_height[v];
