@@ -473,24 +473,22 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   // The queried triangles: those that grow and moved or crossed in the attempt before.
   // The crossings are then cleared (every crossed triangle is either queried or no
   // longer grows) and found again.
+  auto queried = [&](int f) {
+    const bool q = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
+    if (q || !tri_grows_[f]) collided_[f] = 0;
+    return q;
+  };
   if (listed_) {
     clear_flags(query_listed_, &query_list_, &query_);
-    auto query = [&](int f) {
-      if (query_[f]) return;
-      const bool q = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
-      if (q) {
-        query_[f] = 1;
-        query_list_.push_back(f);
-      }
-      if (q || !tri_grows_[f]) collided_[f] = 0;
+    auto list_query = [&](int f) {
+      if (query_[f] || !queried(f)) return;
+      query_[f] = 1;
+      query_list_.push_back(f);
     };
-    for (int f : tri_list_) query(f);
-    for (int f : collided_list_) query(f);
+    for (int f : tri_list_) list_query(f);
+    for (int f : collided_list_) list_query(f);
   } else {
-    tbb::parallel_for(0, nt_, [&](int f) {
-      query_[f] = tri_grows_[f] && (tri_moved_[f] || collided_[f]);
-      if (query_[f] || !tri_grows_[f]) collided_[f] = 0;
-    });
+    tbb::parallel_for(0, nt_, [&](int f) { query_[f] = queried(f); });
   }
   query_listed_ = listed_;
   collided_list_.clear();

@@ -179,11 +179,7 @@ class TriangleBvh {
     if (slabs && static_cast<int>(item_slabs_.size()) != n) changed = nullptr;  // none kept yet: all
     if (!changed) item_slabs_.resize(slabs ? n : 0);
     tbb::parallel_for(0, n, [&](int i) {
-      if (changed && !(*changed)[items_[i]]) return;
-      Vec3 c[3];
-      corners_of(items_[i], c);
-      item_box_[i] = FloatBox::enclosing(Box::of_triangle(c[0], c[1], c[2]));
-      if (slabs) item_slabs_[i] = DiagonalSlabs::of_triangle(c[0], c[1], c[2]);
+      if (!changed || (*changed)[items_[i]]) set_triangle_item(i, slabs, corners_of);
     });
     refit_nodes();
   }
@@ -203,13 +199,9 @@ class TriangleBvh {
   void refit_triangles_listed(const std::vector<int>& items, const LayoutIndex& index, CornersOf&& corners_of) {
     const bool slabs = !item_slabs_.empty();
     tbb::parallel_for(std::size_t(0), items.size(), [&](std::size_t k) {
-      const Node& leaf = nodes_[index.leaf[items[k]]];
-      int i = leaf.first;
+      int i = nodes_[index.leaf[items[k]]].first;
       while (items_[i] != items[k]) ++i;
-      Vec3 c[3];
-      corners_of(items_[i], c);
-      item_box_[i] = FloatBox::enclosing(Box::of_triangle(c[0], c[1], c[2]));
-      if (slabs) item_slabs_[i] = DiagonalSlabs::of_triangle(c[0], c[1], c[2]);
+      set_triangle_item(i, slabs, corners_of);
     });
     refit_ancestors(items, index);
   }
@@ -447,6 +439,14 @@ class TriangleBvh {
   // The same for the subtree of node root, whose nodes are [root, end).
   void refit_subtree(int root, int end);
   void refit_node(int i);
+  // The box (and slabs) of the triangle at leaf position i, from its corners.
+  template <class CornersOf>
+  void set_triangle_item(int i, bool slabs, CornersOf& corners_of) {
+    Vec3 c[3];
+    corners_of(items_[i], c);
+    item_box_[i] = FloatBox::enclosing(Box::of_triangle(c[0], c[1], c[2]));
+    if (slabs) item_slabs_[i] = DiagonalSlabs::of_triangle(c[0], c[1], c[2]);
+  }
   // The leaves of the listed items and every node above them, children first.
   void refit_ancestors(const std::vector<int>& items, const LayoutIndex& index);
 
