@@ -28,6 +28,21 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 constexpr std::uint8_t bit(CellCheckFlag f) { return static_cast<std::uint8_t>(f); }
 
+// What is wrong with cell c's type, node count or node ids; empty when nothing is.
+std::string cell_structure_error(const VolumeMesh& mesh, std::size_t c) {
+  const auto n_points = static_cast<std::int64_t>(mesh.points.size());
+  const int k = corner_count(mesh.cell_types[c]);
+  if (k == 0) return "check_volume_mesh: cell " + std::to_string(c) + " has an unsupported type";
+  if (mesh.offsets[c + 1] - mesh.offsets[c] != k)
+    return "check_volume_mesh: cell " + std::to_string(c) + " (" + cell_type_name(mesh.cell_types[c]) + ") has " +
+           std::to_string(mesh.offsets[c + 1] - mesh.offsets[c]) + " nodes, expected " + std::to_string(k);
+  for (std::int64_t i = mesh.offsets[c]; i < mesh.offsets[c + 1]; ++i)
+    if (mesh.connectivity[i] < 0 || mesh.connectivity[i] >= n_points)
+      return "check_volume_mesh: cell " + std::to_string(c) + " uses node " + std::to_string(mesh.connectivity[i]) +
+             ", outside [0, " + std::to_string(n_points) + ")";
+  return {};
+}
+
 void check_structure(const VolumeMesh& mesh) {
   const std::size_t n = mesh.n_cells();
   if (mesh.offsets.size() != n + 1 || mesh.offsets.front() != 0)
@@ -36,37 +51,17 @@ void check_structure(const VolumeMesh& mesh) {
   if (mesh.offsets.back() != static_cast<std::int64_t>(mesh.connectivity.size()))
     throw InputError("check_volume_mesh: last offset " + std::to_string(mesh.offsets.back()) +
                      " differs from the connectivity size " + std::to_string(mesh.connectivity.size()));
-  const auto n_points = static_cast<std::int64_t>(mesh.points.size());
-  auto well_formed = [&](std::size_t c) {
-    const int k = corner_count(mesh.cell_types[c]);
-    if (k == 0 || mesh.offsets[c + 1] - mesh.offsets[c] != k) return false;
-    for (std::int64_t i = mesh.offsets[c]; i < mesh.offsets[c + 1]; ++i)
-      if (mesh.connectivity[i] < 0 || mesh.connectivity[i] >= n_points) return false;
-    return true;
-  };
-  // The cells are scanned in parallel (serially, 10 ms of a 528k-cell check); the first
-  // ill-formed one, if any, is then described.
+  // The cells are scanned in parallel (serially, 10 ms of a 528k-cell check) for the
+  // first ill-formed one.
   const std::size_t first_bad = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, n), n,
       [&](const tbb::blocked_range<std::size_t>& r, std::size_t found) {
         for (std::size_t c = r.begin(); c < r.end() && c < found; ++c)
-          if (!well_formed(c)) return c;
+          if (!cell_structure_error(mesh, c).empty()) return c;
         return found;
       },
       [](std::size_t a, std::size_t b) { return std::min(a, b); });
-  if (first_bad < n) {
-    const std::size_t c = first_bad;
-    const int k = corner_count(mesh.cell_types[c]);
-    if (k == 0) throw InputError("check_volume_mesh: cell " + std::to_string(c) + " has an unsupported type");
-    if (mesh.offsets[c + 1] - mesh.offsets[c] != k)
-      throw InputError("check_volume_mesh: cell " + std::to_string(c) + " (" + cell_type_name(mesh.cell_types[c]) +
-                       ") has " + std::to_string(mesh.offsets[c + 1] - mesh.offsets[c]) + " nodes, expected " +
-                       std::to_string(k));
-    for (std::int64_t i = mesh.offsets[c]; i < mesh.offsets[c + 1]; ++i)
-      if (mesh.connectivity[i] < 0 || mesh.connectivity[i] >= n_points)
-        throw InputError("check_volume_mesh: cell " + std::to_string(c) + " uses node " +
-                         std::to_string(mesh.connectivity[i]) + ", outside [0, " + std::to_string(n_points) + ")");
-  }
+  if (first_bad < n) throw InputError(cell_structure_error(mesh, first_bad));
 }
 
 // A face of a cell as integers that compare in one or two instructions. A face is
