@@ -5,9 +5,6 @@
 // point stopping together), the reason follows a fixed order, not the input's.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <numeric>
-#include <random>
 #include <string>
 
 #include "blayer/extruder/extrude_layers.h"
@@ -16,22 +13,6 @@
 
 namespace blayer {
 namespace {
-
-TriSurface shuffled(const TriSurface& s, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::vector<int> to(s.points.size());
-  std::iota(to.begin(), to.end(), 0);
-  std::shuffle(to.begin(), to.end(), rng);
-  TriSurface out;
-  out.points.resize(s.points.size());
-  for (std::size_t v = 0; v < s.points.size(); ++v) out.points[to[v]] = s.points[v];
-  for (const Triangle& t : s.triangles) {
-    const int r = static_cast<int>(rng() % 3);
-    out.triangles.push_back({to[t[r]], to[t[(r + 1) % 3]], to[t[(r + 2) % 3]]});
-  }
-  std::shuffle(out.triangles.begin(), out.triangles.end(), rng);
-  return out;
-}
 
 // Regression case 006 (a slot narrower than the layers, single columns as in its
 // case.toml): collisions and wall gaps limit 399 of its 1,393 columns.
@@ -42,7 +23,7 @@ TEST(InputOrder, ShuffledThinSlotStopsAndLimitsTheSameColumnsPerReason) {
   ASSERT_GT(base.limited_columns[static_cast<int>(StopReason::kCollision)], 0);
   ASSERT_GT(base.limited_columns[static_cast<int>(StopReason::kWallGap)], 0);
   for (unsigned seed = 1; seed <= 4; ++seed) {
-    const ExtrusionReport r = extrude_layers(shuffled(slot, seed), p).report;
+    const ExtrusionReport r = extrude_layers(test::shuffled(slot, seed), p).report;
     EXPECT_EQ(r.stopped_columns, base.stopped_columns) << "seed " << seed;
     EXPECT_EQ(r.limited_columns, base.limited_columns) << "seed " << seed;
   }
@@ -63,7 +44,7 @@ TEST(InputOrder, ShuffledFacingBoxesGiveTheSameFansCellsAndReasons) {
   ASSERT_GT(base.report.fans.points, 0);
   ASSERT_GT(base.report.limited_columns[static_cast<int>(StopReason::kProximity)], 0);
   for (unsigned seed = 1; seed <= 4; ++seed) {
-    const ExtrusionResult r = extrude_layers(shuffled(boxes, seed), p);
+    const ExtrusionResult r = extrude_layers(test::shuffled(boxes, seed), p);
     EXPECT_EQ(r.mesh.n_cells(), base.mesh.n_cells()) << "seed " << seed;
     EXPECT_EQ(r.report.fans.points, base.report.fans.points) << "seed " << seed;
     EXPECT_EQ(r.report.fans.columns, base.report.fans.columns) << "seed " << seed;

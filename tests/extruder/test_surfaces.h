@@ -7,6 +7,8 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <numeric>
+#include <random>
 #include <vector>
 
 #include "blayer/core/surface.h"
@@ -32,6 +34,24 @@ inline ExtrusionParams growth_params(int n, double h1, double r) {
   p.growth.first_height = h1;
   p.growth.growth_ratio = r;
   return p;
+}
+
+// The same surface read in another order: its points renumbered and its triangles
+// shuffled, each with its corners rotated (the winding kept).
+inline TriSurface shuffled(const TriSurface& s, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<int> to(s.points.size());
+  std::iota(to.begin(), to.end(), 0);
+  std::shuffle(to.begin(), to.end(), rng);
+  TriSurface out;
+  out.points.resize(s.points.size());
+  for (std::size_t v = 0; v < s.points.size(); ++v) out.points[to[v]] = s.points[v];
+  for (const Triangle& t : s.triangles) {
+    const int r = static_cast<int>(rng() % 3);
+    out.triangles.push_back({to[t[r]], to[t[(r + 1) % 3]], to[t[(r + 2) % 3]]});
+  }
+  std::shuffle(out.triangles.begin(), out.triangles.end(), rng);
+  return out;
 }
 
 // Boundary of a union of unit voxels (i,j,k) in [0,n)^3 where filled(i,j,k), scaled by
