@@ -13,6 +13,7 @@
 #include "blayer/core/free_heap.h"
 #include "blayer/core/stopwatch.h"
 #include "blayer/extruder/extrude_layers.h"
+#include "blayer/extruder/wall_renumbering.h"
 #include "blayer/fill/fill_envelope.h"
 #include "blayer/fill/hybrid_mesh.h"
 #include "blayer/fill/tet_fill.h"
@@ -238,7 +239,7 @@ int run_extrude_command(const ParamValues& params) {
   const ExtrudeOutputs out = stage_outputs(params, outputs);
 
   const PrepareOptions surface_opt = surface_options(params);
-  const PreparedSurface prepared = load_surface(input, surface_opt);
+  PreparedSurface prepared = load_surface(input, surface_opt);
   std::vector<std::string> notes = prepared.notes;
   ExtrusionParams ep = extrusion_params(params, prepared.surface, &notes);
   ep.symmetry = prepared.symmetry;
@@ -247,7 +248,7 @@ int run_extrude_command(const ParamValues& params) {
   for (const std::string& n : notes) std::printf("note: %s\n", n.c_str());
   std::fflush(stdout);
 
-  ExtrusionResult result = extrude_layers(prepared.surface, ep, progress_bar());
+  ExtrusionResult result = extrude_layers_in_spatial_order(&prepared.surface, ep, progress_bar());
   release_free_heap();
   const std::size_t n_layer_cells = result.mesh.n_cells();
   std::printf("%s", format_extrusion_report(result.report).c_str());
