@@ -28,6 +28,7 @@ std::uint64_t morton_key(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
 
 std::vector<int> morton_order(const std::vector<Vec3>& points) {
   const int n = static_cast<int>(points.size());
+  if (points.empty()) return {};
   Vec3 lo{}, hi{};
   for (int a = 0; a < 3; ++a) {
     lo[a] = std::numeric_limits<double>::infinity();
@@ -39,11 +40,11 @@ std::vector<int> morton_order(const std::vector<Vec3>& points) {
       hi[a] = std::max(hi[a], p[a]);
     }
   constexpr double kTopCell = (1u << kMortonBitsPerAxis) - 1;
-  double scale[3];
-  for (int a = 0; a < 3; ++a) scale[a] = hi[a] > lo[a] ? kTopCell / (hi[a] - lo[a]) : 0.0;
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 0.0});
+  const double scale = extent > 0.0 ? kTopCell / extent : 0.0;
   // Rounding can put (p - lo) * scale a hair above kTopCell at the top of the box: clamp.
   auto cell = [&](const Vec3& p, int a) {
-    return static_cast<std::uint32_t>(std::min(kTopCell, (p[a] - lo[a]) * scale[a]));
+    return static_cast<std::uint32_t>(std::min(kTopCell, (p[a] - lo[a]) * scale));
   };
   std::vector<std::pair<std::uint64_t, int>> keyed(n);
   for (int i = 0; i < n; ++i) keyed[i] = {morton_key(cell(points[i], 0), cell(points[i], 1), cell(points[i], 2)), i};

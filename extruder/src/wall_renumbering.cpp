@@ -3,6 +3,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <numeric>
 #include <type_traits>
@@ -10,6 +13,7 @@
 
 #include "blayer/core/assert.h"
 #include "blayer/core/spatial_order.h"
+#include "blayer/core/vertex_adjacency.h"
 
 namespace blayer {
 
@@ -91,17 +95,61 @@ void restore_column_order(ExtrusionResult* res) {
     for (int& c : t) c = new_index[c];
 }
 
+// Pairs (j, k), j < k, of triangles sharing an edge.
+std::vector<std::array<int, 2>> edge_neighbour_pairs(const TriSurface& wall) {
+  const CsrTable around = vertex_triangles(wall);
+  std::vector<std::array<int, 2>> pairs;
+  for (int j = 0; j < static_cast<int>(wall.triangles.size()); ++j) {
+    const Triangle& t = wall.triangles[j];
+    for (int i = 0; i < 3; ++i) {
+      const int a = t[i], b = t[(i + 1) % 3];
+      for (const int* k = around.begin(a); k != around.end(a); ++k) {
+        const Triangle& u = wall.triangles[*k];
+        if (*k > j && (u[0] == b || u[1] == b || u[2] == b)) pairs.push_back({j, *k});
+      }
+    }
+  }
+  return pairs;
+}
+
+// The geometric mean spread of neighbours' positions: the mean of log2(1 + |position
+// of j - position of k|) over the pairs (position: where a triangle sits in a
+// numbering; empty: the wall's own).
+double neighbour_spread_bits(const std::vector<std::array<int, 2>>& pairs, const std::vector<int>& position) {
+  if (pairs.empty()) return 0.0;
+  double sum = 0.0;
+  for (const auto& [j, k] : pairs) {
+    const int d = position.empty() ? k - j : std::abs(position[j] - position[k]);
+    sum += std::log2(1.0 + d);
+  }
+  return sum / static_cast<double>(pairs.size());
+}
+
 }  // namespace
 
 WallRenumbering spatial_renumbering(const TriSurface& wall) {
   WallRenumbering r;
-  r.point_source = morton_order(wall.points);
   std::vector<Vec3> centroids(wall.triangles.size());
   for (std::size_t j = 0; j < wall.triangles.size(); ++j) {
     const Triangle& t = wall.triangles[j];
     centroids[j] = (wall.points[t[0]] + wall.points[t[1]] + wall.points[t[2]]) / 3.0;
   }
-  r.triangle_source = morton_order(centroids);
+  const std::vector<int> triangles = morton_order(centroids);
+  std::vector<int> position(triangles.size());
+  for (std::size_t i = 0; i < triangles.size(); ++i) position[triangles[i]] = static_cast<int>(i);
+  const std::vector<std::array<int, 2>> pairs = edge_neighbour_pairs(wall);
+  r.input_spread_bits = neighbour_spread_bits(pairs, {});
+  r.spatial_spread_bits = neighbour_spread_bits(pairs, position);
+  if (r.spatial_spread_bits > r.input_spread_bits - kMinSpreadGainBits) {
+    r.point_source.resize(wall.points.size());
+    std::iota(r.point_source.begin(), r.point_source.end(), 0);
+    r.triangle_source.resize(wall.triangles.size());
+    std::iota(r.triangle_source.begin(), r.triangle_source.end(), 0);
+    r.keeps_input_order = true;
+    return r;
+  }
+  r.point_source = morton_order(wall.points);
+  r.triangle_source = triangles;
   return r;
 }
 
@@ -144,6 +192,7 @@ void restore_wall_numbering(const WallRenumbering& r, ExtrusionResult* result) {
 ExtrusionResult extrude_layers_in_spatial_order(TriSurface* wall, const ExtrusionParams& params,
                                                 const std::function<void(int layer, int n_layers)>& progress) {
   const WallRenumbering r = spatial_renumbering(*wall);
+  if (r.keeps_input_order) return extrude_layers(*wall, params, progress);
   // In place, not a copy: the wall's second copy would add to the run's peak memory.
   *wall = renumbered_wall(*wall, r);
   ExtrusionResult result;

@@ -94,6 +94,18 @@ TEST(SpatialOrder, EqualKeysKeepTheInputOrder) {
   }
 }
 
+// A strip 100 long and 0.01 thick, its points alternating between its two faces: with
+// cubic cells the thickness spans a few of them and the order runs along the strip. Were
+// each axis stretched over the curve's whole range, the thickness would decide first:
+// one face, then the other.
+TEST(SpatialOrder, AThinStripIsOrderedAlongItsLength) {
+  std::vector<Vec3> points;
+  for (int i = 0; i < 100; ++i) points.push_back({static_cast<double>(i), 0.0, i % 2 == 0 ? 0.0 : 0.01});
+  std::vector<int> along(100);
+  std::iota(along.begin(), along.end(), 0);
+  EXPECT_EQ(morton_order(points), along);
+}
+
 TEST(SpatialOrder, FlatEmptyAndSinglePointSetsAreOrdered) {
   EXPECT_TRUE(morton_order({}).empty());
   EXPECT_EQ(morton_order({{1, 2, 3}}), std::vector<int>{0});

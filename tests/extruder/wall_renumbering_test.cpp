@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <set>
 #include <vector>
 
@@ -69,9 +70,16 @@ std::multiset<std::vector<long long>> cell_set(const VolumeMesh& m, const std::v
   return cells;
 }
 
+std::vector<Vec3> centroids_of(const TriSurface& s) {
+  std::vector<Vec3> c;
+  for (const Triangle& t : s.triangles) c.push_back((s.points[t[0]] + s.points[t[1]] + s.points[t[2]]) / 3.0);
+  return c;
+}
+
 TEST(WallRenumbering, RenumberedWallListsTheSameTrianglesWoundAlike) {
   const TriSurface wall = facing_boxes_shuffled();
   const WallRenumbering r = spatial_renumbering(wall);
+  ASSERT_FALSE(r.keeps_input_order) << "a shuffled wall gains on its own order";
   ASSERT_EQ(r.point_source, morton_order(wall.points));
   const TriSurface w = renumbered_wall(wall, r);
   const TriSurface back = wall_in_input_order(w, r);
@@ -92,10 +100,56 @@ TEST(WallRenumbering, RenumberedWallListsTheSameTrianglesWoundAlike) {
   EXPECT_LT(mean_step(w), 0.5 * mean_step(wall));
 }
 
+// Oracle for the spread: every pair of triangles compared for a shared edge.
+double spread_by_all_pairs(const TriSurface& s, const std::vector<int>& source) {
+  std::vector<int> position(source.size());
+  for (std::size_t i = 0; i < source.size(); ++i) position[source[i]] = static_cast<int>(i);
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t j = 0; j < s.triangles.size(); ++j)
+    for (std::size_t k = j + 1; k < s.triangles.size(); ++k) {
+      int shared = 0;
+      for (int a : s.triangles[j])
+        for (int b : s.triangles[k]) shared += a == b;
+      if (shared != 2) continue;
+      sum += std::log2(1.0 + std::abs(position[j] - position[k]));
+      ++n;
+    }
+  return sum / n;
+}
+
+// A plate numbered row by row is numbered along its surface already: its own order is
+// kept. Shuffled, it is renumbered, and the curve brings neighbours closer by the bar.
+TEST(WallRenumbering, AWallNumberedAlongItsSurfaceKeepsItsOrder) {
+  const TriSurface plate = test::square_plate(40, 1.0);
+  const WallRenumbering kept = spatial_renumbering(plate);
+  EXPECT_TRUE(kept.keeps_input_order);
+  std::vector<int> identity(plate.triangles.size());
+  std::iota(identity.begin(), identity.end(), 0);
+  EXPECT_EQ(kept.triangle_source, identity);
+  EXPECT_NEAR(kept.input_spread_bits, spread_by_all_pairs(plate, identity), 1e-12);
+  EXPECT_NEAR(kept.spatial_spread_bits, spread_by_all_pairs(plate, morton_order(centroids_of(plate))), 1e-12);
+
+  const TriSurface shuffled = test::shuffled(plate, 5);
+  const WallRenumbering moved = spatial_renumbering(shuffled);
+  EXPECT_FALSE(moved.keeps_input_order);
+  EXPECT_NEAR(moved.input_spread_bits, spread_by_all_pairs(shuffled, identity), 1e-12);
+  EXPECT_NEAR(moved.spatial_spread_bits, spread_by_all_pairs(shuffled, moved.triangle_source), 1e-12);
+  EXPECT_LE(moved.spatial_spread_bits, moved.input_spread_bits - kMinSpreadGainBits);
+  // Kept, the march is extrude_layers' own: the same mesh, bit for bit.
+  TriSurface marched = plate;
+  const ExtrusionParams p = test::growth_params(3, 0.01, 1.2);
+  const ExtrusionResult a = extrude_layers(plate, p);
+  const ExtrusionResult b = extrude_layers_in_spatial_order(&marched, p);
+  EXPECT_EQ(a.mesh.points, b.mesh.points);
+  EXPECT_EQ(a.mesh.connectivity, b.mesh.connectivity);
+}
+
 TEST(WallRenumbering, SpatialExtrusionGivesTheSameCellsWithTheWallsOwnNumbering) {
   const TriSurface wall = facing_boxes_shuffled();
   const ExtrusionParams p = fan_params();
   const ExtrusionResult base = extrude_layers(wall, p);
+  ASSERT_FALSE(spatial_renumbering(wall).keeps_input_order);
   TriSurface marched = wall;
   const ExtrusionResult spatial = extrude_layers_in_spatial_order(&marched, p);
   ASSERT_EQ(marched.points, wall.points) << "the wall is given back in its own numbering";
@@ -135,6 +189,7 @@ TEST(WallRenumbering, RestoredIdsNameTheWallsOwnPointsAndTriangles) {
   // A gap of one first height: the columns across it end on the wall.
   const TriSurface wall = facing_boxes_shuffled(0.01);
   const ExtrusionParams p = fan_params();
+  ASSERT_FALSE(spatial_renumbering(wall).keeps_input_order);
   TriSurface marched = wall;
   const ExtrusionResult r = extrude_layers_in_spatial_order(&marched, p);
   const std::size_t nf = wall.triangles.size();

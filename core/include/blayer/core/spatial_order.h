@@ -3,12 +3,15 @@
 // that visits a region at a time (the extruder's bounding-volume trees visit the
 // triangles of one region together and read their columns' points).
 //
-// The curve is the Morton (Z-order) curve of the points' axis-aligned bounding box,
-// each coordinate mapped linearly onto 2^21 cells (a 63-bit key). Points in one cell
-// and points with equal keys keep their input order, so the order is deterministic.
-// Input: finite coordinates (a flat or empty box is fine: its zero extent maps to cell
-// 0). Output: a permutation of 0..#points-1, position i holding the index of the i-th
-// point along the curve. O(#points log #points).
+// The curve is the Morton (Z-order) curve of a cube on the points' bounding box: each
+// coordinate from the box's low corner, over the box's largest extent, onto 2^21 cells
+// (a 63-bit key). Cubic cells, not the box's own proportions: a thin shape (a wing's
+// thickness) stretched to as many cells as its span would be cut into bands at every
+// level of the curve, and its neighbours numbered far apart. Points in one cell and
+// points with equal keys keep their input order, so the order is deterministic.
+// Input: finite coordinates (all points equal, or none, is fine). Output: a
+// permutation of 0..#points-1, position i holding the index of the i-th point along
+// the curve. O(#points log #points).
 #pragma once
 
 #include <cstdint>
