@@ -19,7 +19,10 @@
 //   changed: the numbering of the layer points and of the cells within each layer,
 //     which follow the spatial order; the node order of fan cells (strips, corner
 //     patches), whose first node follows the order in which the wall lists its
-//     triangles; which of a fan point's columns its wall row of the point arrays shows
+//     triangles, and with it the check's growth ratio of the strip-end wedges that lie
+//     along a ridge (their caps face along it, so their "cell above" is a neighbour
+//     along the ridge, at one end or the other); which of a fan point's columns its
+//     wall row of the point arrays shows
 //     (the first in column order); and floating-point sums over a point's neighbours,
 //     taken in another order, which move points by rounding (on the perforated block
 //     by at most 2e-15, in coordinates up to 5).
