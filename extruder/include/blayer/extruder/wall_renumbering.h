@@ -27,7 +27,7 @@
 //     (the first in column order); and floating-point sums over a point's neighbours,
 //     taken in another order, which move points by rounding (by at most 2e-15 on the
 //     perforated block, in coordinates up to 5; 8e-13 on the ONERA M6 half model, in
-//     coordinates up to 1.2, through the layers' smoothing).
+//     coordinates up to 1.2, accumulated over ten layers).
 //   The march decides the same (which columns stop, where and why) in any numbering,
 //   up to such rounding: input_order_test.cpp pins this on shuffled walls.
 #pragma once
