@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
+#include <limits>
 #include <optional>
 
 #include "blayer/core/assert.h"
@@ -244,6 +246,8 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
   if (check_collisions_) {
     tree_index_ = new_tree_.layout_index();
     soup_.resize(static_cast<std::size_t>(nv_) + 2 * static_cast<std::size_t>(nc_));
+    BLAYER_ASSERT_MSG(soup_.size() <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()),
+                      "the checker's point soup is indexed by 32-bit ids");
     std::copy(wall.points.begin(), wall.points.end(), soup_.begin());
     tbb::parallel_for(0, nf_, [&](int f) {
       const Triangle& t = wall.triangles[f];
@@ -300,7 +304,7 @@ void FrontChecker::begin_layer(int k, const std::vector<Vec3>& top, const std::v
     if (k > 0) {
       tbb::parallel_for(0, nt_, [&](int f) {
         const Triangle& t = front_[f];
-        cur_tris_[f] = {cur_id(t[0]), cur_id(t[1]), cur_id(t[2])};
+        cur_tris_[f] = {soup_id(cur_id(t[0])), soup_id(cur_id(t[1])), soup_id(cur_id(t[2]))};
         cur_is_wall_[f] = (layers[t[0]] == 0 && layers[t[1]] == 0 && layers[t[2]] == 0) ||
                           names_a_point_twice(cur_tris_[f]);
       });
@@ -466,7 +470,7 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   }
   for_listed_or_all(listed_, tri_list_, nt_, [&](int f) {
     const Triangle& t = front_[f];
-    new_tris_[f] = {new_id(t[0]), new_id(t[1]), new_id(t[2])};
+    new_tris_[f] = {soup_id(new_id(t[0])), soup_id(new_id(t[1])), soup_id(new_id(t[2]))};
     // A triangle naming a point twice is no triangle: it is neither tested nor a partner.
     if (names_a_point_twice(new_tris_[f])) tri_grows_[f] = 0;
   });
@@ -511,18 +515,18 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   new_tree_.mark_nodes(query_, &query_nodes_);
   auto hit = [&](int f) { crossing_.local().push_back(f); };
   new_tree_.for_each_overlapping_pair(query_, query_nodes_, wall_->tree, [&](int f, int j) {
-    if (soup_triangles_intersect(soup_, new_tris_[f], wall_tris_[j])) hit(f);
+    if (compact_soup_triangles_intersect(soup_, new_tris_[f], wall_tris_[j])) hit(f);
   });
   auto new_pair = [&](int f, int j) {
     if (!tri_grows_[f] || !tri_grows_[j]) return;
-    if (soup_triangles_intersect(soup_, new_tris_[f], new_tris_[j])) {
+    if (compact_soup_triangles_intersect(soup_, new_tris_[f], new_tris_[j])) {
       hit(f);
       hit(j);
     }
   };
   if (k_ > 0)
     new_tree_.for_each_overlapping_pair_with_twin(query_, query_nodes_, cur_tree_, new_pair, [&](int f, int j) {
-      if (!cur_is_wall_[j] && soup_triangles_intersect(soup_, new_tris_[f], cur_tris_[j])) hit(f);
+      if (!cur_is_wall_[j] && compact_soup_triangles_intersect(soup_, new_tris_[f], cur_tris_[j])) hit(f);
     });
   else
     new_tree_.for_each_overlapping_pair(query_, query_nodes_, new_pair);

@@ -282,7 +282,10 @@ bool segment_meets_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const V
 
 }  // namespace
 
-bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangle& s, const IndexedTriangle& t) {
+namespace {
+
+template <class Triangle3>
+bool soup_pair_intersects(const std::vector<Vec3>& pts, const Triangle3& s, const Triangle3& t) {
   if (names_a_point_twice(s) || names_a_point_twice(t)) return false;  // else more than 3 shared pairs could be counted
   int shared_s[3], shared_t[3], n_shared = 0;
   for (int i = 0; i < 3; ++i)
@@ -337,6 +340,16 @@ bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangl
   const Vec3* const S[3] = {&pts[s[0]], &pts[s[1]], &pts[s[2]]};
   const Vec3* const T[3] = {&pts[t[0]], &pts[t[1]], &pts[t[2]]};
   return triangles_intersect(S, T);
+}
+
+}  // namespace
+
+bool soup_triangles_intersect(const std::vector<Vec3>& pts, const IndexedTriangle& s, const IndexedTriangle& t) {
+  return soup_pair_intersects(pts, s, t);
+}
+
+bool compact_soup_triangles_intersect(const std::vector<Vec3>& pts, const SoupTriangle& s, const SoupTriangle& t) {
+  return soup_pair_intersects(pts, s, t);
 }
 
 std::vector<std::pair<int, int>> find_triangle_intersections(const std::vector<Vec3>& points,

@@ -45,6 +45,10 @@ TEST(TriangleIntersections, SharedEdgeOnlyCountsWhenFolded) {
   EXPECT_TRUE(soup_triangles_intersect(p, {0, 1, 2}, {1, 0, 4}));   // folded onto itself
   EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {1, 0, 5}));  // a dihedral angle
   EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {2, 1, 0}));  // the same face
+  // A triangle naming a point twice is a segment: it meets nothing, with either width.
+  EXPECT_FALSE(soup_triangles_intersect(p, {0, 1, 2}, {0, 0, 4}));
+  EXPECT_FALSE(compact_soup_triangles_intersect(p, SoupTriangle{0, 1, 2}, SoupTriangle{0, 0, 4}));
+  EXPECT_TRUE(compact_soup_triangles_intersect(p, SoupTriangle{0, 1, 2}, SoupTriangle{1, 0, 4}));
 }
 
 // Edge neighbours fold iff the four points are coplanar and the far corners lie on the
@@ -67,6 +71,8 @@ TEST(TriangleIntersections, SharedEdgePairsFoldExactlyWhenCoplanarOnOneSide) {
     const bool coplanar = dot(n_c, p[3] - p[0]) == 0.0;
     const bool expected = coplanar && dot(n_c, n_d) > 0.0;
     ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {1, 0, 3}), expected) << "pair " << i;
+    ASSERT_EQ(compact_soup_triangles_intersect(p, SoupTriangle{0, 1, 2}, SoupTriangle{1, 0, 3}), expected)
+        << "pair " << i;
     folds += expected;
     flat_unfolded += coplanar && !expected;
   }
@@ -133,6 +139,7 @@ TEST(TriangleIntersections, SharedVertexVerdictIsTheOppositeEdgeTests) {
     const bool expected = meet_beyond_corner(p[0], p[1], p[2], p[3], p[4]);
     // Ids 1-4 are distinct: the triangles share id 0 alone even where positions repeat.
     ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {0, 3, 4}), expected) << "pair " << t;
+    ASSERT_EQ(compact_soup_triangles_intersect(p, SoupTriangle{0, 1, 2}, SoupTriangle{0, 3, 4}), expected) << "pair " << t;
     (expected ? crossing : apart)++;
   }
   EXPECT_GT(crossing, 1000);
@@ -175,11 +182,15 @@ TEST(TriangleIntersections, NearlyFlatPairsGetTheVerdictOfTheEdgeTests) {
       expected = expected || segment_intersects_triangle(p[k], p[(k + 1) % 3], p[3], p[4], p[5]) ||
                  segment_intersects_triangle(p[3 + k], p[3 + (k + 1) % 3], p[0], p[1], p[2]);
     ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {3, 4, 5}), expected) << "disjoint ids, pair " << i;
+    ASSERT_EQ(compact_soup_triangles_intersect(p, SoupTriangle{0, 1, 2}, SoupTriangle{3, 4, 5}), expected)
+        << "disjoint ids, pair " << i;
     (expected ? disjoint_hits : disjoint_misses)++;
     // The same corners with the first one shared (ids 0, 1, 2 and 0, 4, 5).
     if (flat(p[0], p[4], p[5])) continue;
     const bool beyond = meet_beyond_corner(p[0], p[1], p[2], p[4], p[5]);
     ASSERT_EQ(soup_triangles_intersect(p, {0, 1, 2}, {0, 4, 5}), beyond) << "shared corner, pair " << i;
+    ASSERT_EQ(compact_soup_triangles_intersect(p, SoupTriangle{0, 1, 2}, SoupTriangle{0, 4, 5}), beyond)
+        << "shared corner, pair " << i;
     (beyond ? corner_hits : corner_misses)++;
   }
   EXPECT_GT(disjoint_hits, 1000);

@@ -20,7 +20,11 @@ inline TriangleKey sorted_triangle(std::int64_t a, std::int64_t b, std::int64_t 
 }
 
 // A triangle that names one id twice: a segment, not a face (a fan strip's half where
-// the fan did not grow).
-inline bool names_a_point_twice(const IndexedTriangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
+// the fan did not grow). For ids of any width: the front checker keeps 32-bit ones.
+template <class Id>
+bool names_a_point_twice(const std::array<Id, 3>& t) {
+  return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+}
+inline bool names_a_point_twice(const IndexedTriangle& t) { return names_a_point_twice<std::int64_t>(t); }
 
 }  // namespace blayer

@@ -149,6 +149,8 @@ class FrontChecker {
   // ones and their edge neighbours.
   void list_acceptance_triangles();
   std::int64_t cur_id(int c) const { return (*layers_)[c] == 0 ? wall_point_[c] : nv_ + c; }
+  // A soup id as the 32-bit tables hold it (the constructor checks the soup's size).
+  static std::int32_t soup_id(std::int64_t id) { return static_cast<std::int32_t>(id); }
 
   const std::vector<Triangle>* triangles_;  // the wall's
   // The layout, shared (or the checker's own copy), and the parts of it the checks read:
@@ -173,7 +175,7 @@ class FrontChecker {
   const std::vector<Vec3>* cur_points_ = nullptr;
 
   std::vector<Vec3> soup_;
-  std::vector<IndexedTriangle> wall_tris_, cur_tris_, new_tris_;
+  std::vector<SoupTriangle> wall_tris_, cur_tris_, new_tris_;
   std::vector<char> cur_is_wall_;
   const std::vector<int>* layers_ = nullptr;
 

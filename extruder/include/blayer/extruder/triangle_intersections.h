@@ -32,6 +32,11 @@ bool segment_intersects_triangle(const Vec3& p, const Vec3& q, const Vec3& a, co
 bool soup_triangles_intersect(const std::vector<Vec3>& points, const IndexedTriangle& s,
                               const IndexedTriangle& t);
 
+// The same on 32-bit ids, for soups of fewer than 2^31 points: the front checker's
+// tables of them, read at every pair its trees give, take half the cache.
+using SoupTriangle = std::array<std::int32_t, 3>;
+bool compact_soup_triangles_intersect(const std::vector<Vec3>& points, const SoupTriangle& s, const SoupTriangle& t);
+
 // All pairs (i < j) of intersecting triangles per soup_triangles_intersect, found with a
 // TriangleBvh over the triangles' boxes, in increasing (i, j) order. If `check` is given
 // (one flag per triangle) only pairs with at least one flagged triangle are tested.
