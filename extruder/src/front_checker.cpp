@@ -5,12 +5,11 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdint>
-#include <limits>
 #include <optional>
 
 #include "blayer/core/assert.h"
 #include "blayer/core/edge_topology.h"
+#include "blayer/core/volume_mesh.h"
 #include "blayer/extruder/layer_cells.h"
 #include "blayer/quality/solver_acceptance.h"
 #include "parallel.h"
@@ -246,8 +245,8 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
   if (check_collisions_) {
     tree_index_ = new_tree_.layout_index();
     soup_.resize(static_cast<std::size_t>(nv_) + 2 * static_cast<std::size_t>(nc_));
-    BLAYER_ASSERT_MSG(soup_.size() <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()),
-                      "the checker's point soup is indexed by 32-bit ids");
+    // Its tables hold 32-bit ids (SoupTriangle): refused like a mesh of as many points.
+    require_indexable_points(soup_.size(), "the collision check's points (wall, current and next front)");
     std::copy(wall.points.begin(), wall.points.end(), soup_.begin());
     tbb::parallel_for(0, nf_, [&](int f) {
       const Triangle& t = wall.triangles[f];

@@ -149,7 +149,7 @@ class FrontChecker {
   // ones and their edge neighbours.
   void list_acceptance_triangles();
   std::int64_t cur_id(int c) const { return (*layers_)[c] == 0 ? wall_point_[c] : nv_ + c; }
-  // A soup id as the 32-bit tables hold it (the constructor checks the soup's size).
+  // A soup id as the 32-bit tables hold it (the constructor refuses larger soups).
   static std::int32_t soup_id(std::int64_t id) { return static_cast<std::int32_t>(id); }
 
   const std::vector<Triangle>* triangles_;  // the wall's
