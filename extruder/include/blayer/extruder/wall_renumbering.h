@@ -55,9 +55,9 @@ struct WallRenumbering {
 // geometric mean) to replace the wall's own. Structured surface grids (pyHyp's wings,
 // 3.2 bits) and strip-wise CAD tessellations (the sliver wing segment of
 // bench/make_sliver_wing.py, 5.5 bits) come numbered along the surface, better than
-// the curve does it (4.5 and 10.3 bits): in their spatial order the run took 3-5 % more
+// the curve does it (4.5 and 10.3 bits): in their spatial order the run took 1-6 % more
 // time. The perforated block (8.5 bits against 3.1) and the ONERA M6 (9.5 against 2.8)
-// took 8-13 % less.
+// took 6-13 % and 15-29 % less.
 constexpr double kMinSpreadGainBits = 1.0;
 
 // Points along the Morton curve of their positions, triangles along that of their
