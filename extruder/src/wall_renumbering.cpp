@@ -12,8 +12,8 @@
 #include <utility>
 
 #include "blayer/core/assert.h"
+#include "blayer/core/edge_topology.h"
 #include "blayer/core/spatial_order.h"
-#include "blayer/core/vertex_adjacency.h"
 
 namespace blayer {
 
@@ -95,20 +95,11 @@ void restore_column_order(ExtrusionResult* res) {
     for (int& c : t) c = new_index[c];
 }
 
-// Pairs (j, k), j < k, of triangles sharing an edge.
+// Pairs (j, k), j < k, of the triangles sharing each edge that two triangles share.
 std::vector<std::array<int, 2>> edge_neighbour_pairs(const TriSurface& wall) {
-  const CsrTable around = vertex_triangles(wall);
   std::vector<std::array<int, 2>> pairs;
-  for (int j = 0; j < static_cast<int>(wall.triangles.size()); ++j) {
-    const Triangle& t = wall.triangles[j];
-    for (int i = 0; i < 3; ++i) {
-      const int a = t[i], b = t[(i + 1) % 3];
-      for (const int* k = around.begin(a); k != around.end(a); ++k) {
-        const Triangle& u = wall.triangles[*k];
-        if (*k > j && (u[0] == b || u[1] == b || u[2] == b)) pairs.push_back({j, *k});
-      }
-    }
-  }
+  for (const SurfaceEdge& e : build_edge_topology(wall).edges)
+    if (e.n_uses == 2) pairs.push_back(e.triangle);
   return pairs;
 }
 
