@@ -119,6 +119,24 @@ double cosine(const Vec3& a, double a_n2, const Vec3& b, double b_n2) {
   return dot(a, b) / std::sqrt(a_n2 * b_n2);
 }
 
+// cos |cos| of the angle between a and b (squared lengths a_n2, b_n2, both non-zero):
+// an increasing function of the cosine, so it picks the same extreme pairs without a
+// square root per pair (the cosines' square roots were most of a hex's metrics; only
+// the picked pairs' cosines or angles are then computed). dot |dot| / (a_n2 b_n2)
+// neither overflows nor underflows to a zero denominator for squared lengths in
+// [1e-150, 1e150]; others square the cosine. The rounded key and the rounded cosine
+// can order two pairs differently only where their cosines agree to a few units in the
+// last place: angles near 0 closer than about 1e-8 radians, which neither resolves.
+double cosine_key(const Vec3& a, double a_n2, const Vec3& b, double b_n2) {
+  auto moderate = [](double n2) { return n2 >= 1e-150 && n2 <= 1e150; };
+  if (!moderate(a_n2) || !moderate(b_n2)) {
+    const double c = cosine(a, a_n2, b, b_n2);
+    return c * std::fabs(c);
+  }
+  const double d = dot(a, b);
+  return d * std::fabs(d) / (a_n2 * b_n2);
+}
+
 // The two edge vectors at each corner of a face (n = 3 or 4 nodes): u[i] to the
 // previous node, w[i] to the next, both subtracted from the corner; n2[i] is the squared
 // length of edge i -> i + 1, so that of u[i] is n2[i - 1] and that of w[i] is n2[i].
@@ -158,11 +176,26 @@ struct FaceExtremes {
 
 FaceExtremes face_extremes(const FaceCorners& fc) {
   FaceExtremes x;
-  for (int i = 0; i < fc.n; ++i) {
-    const double c = cosine(fc.u[i], fc.n2[kPrev[fc.n - 3][i]], fc.w[i], fc.n2[i]);
-    if (c > x.cos_lo) x.cos_lo = c, x.i_lo = i;
-    if (c < x.cos_hi) x.cos_hi = c, x.i_hi = i;
+  const int* prev = kPrev[fc.n - 3];
+  auto corner_cosine = [&](int i) { return cosine(fc.u[i], fc.n2[prev[i]], fc.w[i], fc.n2[i]); };
+  if (fc.n == 3) {
+    for (int i = 0; i < 3; ++i) {
+      const double c = corner_cosine(i);
+      if (c > x.cos_lo) x.cos_lo = c, x.i_lo = i;
+      if (c < x.cos_hi) x.cos_hi = c, x.i_hi = i;
+    }
+    return x;
   }
+  // A quad's two extreme corners by cosine_key, then their cosines: two square roots
+  // instead of four (a triangle's three cosines cost less than three keys and two).
+  double key_lo = -2.0, key_hi = 2.0;
+  for (int i = 0; i < fc.n; ++i) {
+    const double k = cosine_key(fc.u[i], fc.n2[prev[i]], fc.w[i], fc.n2[i]);
+    if (k > key_lo) key_lo = k, x.i_lo = i;
+    if (k < key_hi) key_hi = k, x.i_hi = i;
+  }
+  x.cos_lo = corner_cosine(x.i_lo);
+  x.cos_hi = x.i_hi == x.i_lo ? x.cos_lo : corner_cosine(x.i_hi);
   return x;
 }
 
@@ -232,18 +265,19 @@ double cell_skewness(const FaceCorners* fc, const int* faces, int n_faces, bool 
   return skew;
 }
 
-// Tracks the largest angle over vector pairs by cosine; one atan2 at the end. A pair
-// with a zero vector has no angle and is skipped. x_n2, y_n2: squared lengths.
+// Tracks the largest angle over vector pairs by cosine (cosine_key); one atan2 at the
+// end. A pair with a zero vector has no angle and is skipped. x_n2, y_n2: squared
+// lengths.
 struct LargestAngle {
-  double cos = 2.0;
+  double key = 2.0;  // above every key: no pair yet
   Vec3 a{}, b{};
   void add(const Vec3& x, double x_n2, const Vec3& y, double y_n2) {
     if (x_n2 == 0.0 || y_n2 == 0.0) return;
-    const double c = cosine(x, x_n2, y, y_n2);
-    if (c < cos) cos = c, a = x, b = y;
+    const double k = cosine_key(x, x_n2, y, y_n2);
+    if (k < key) key = k, a = x, b = y;
   }
   void add(const Vec3& x, const Vec3& y) { add(x, norm2(x), y, norm2(y)); }
-  double degrees() const { return cos > 1.5 ? 0.0 : angle_between(a, b) * kRadToDeg; }
+  double degrees() const { return key > 1.5 ? 0.0 : angle_between(a, b) * kRadToDeg; }
 };
 
 // Both diagonal splits of quad (a,b,c,d): the pairs of triangle normals. The face's

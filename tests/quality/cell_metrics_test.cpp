@@ -216,5 +216,83 @@ TEST(CellMetrics, SkewnessIsTheLargestOverFacesOfEveryCornerAngle) {
   }
 }
 
+double degrees_between(const Vec3& a, const Vec3& b) { return angle_between(a, b) * 180.0 / kPi; }
+
+// Twist from every quad face and both of its diagonal splits, with atan2 for each pair
+// of split normals: the definition in cell_metrics.h without picking pairs by cosine.
+double reference_twist(const std::vector<Vec3>& p, const std::vector<std::vector<int>>& quads) {
+  double twist = 0.0;
+  for (const std::vector<int>& q : quads) {
+    const Vec3 &a = p[q[0]], &b = p[q[1]], &c = p[q[2]], &d = p[q[3]];
+    twist = std::max(twist, degrees_between(cross(b - a, c - a), cross(c - a, d - a)));
+    twist = std::max(twist, degrees_between(cross(c - b, d - b), cross(d - b, a - b)));
+  }
+  return twist;
+}
+
+// Orthogonality from every column edge against both cap normals (a triangle cap's
+// normal from its corners, a quad cap's from its diagonals), atan2 for each pair.
+double reference_orthogonality(const std::vector<Vec3>& p, const std::vector<int>& bottom,
+                               const std::vector<int>& top) {
+  auto cap_normal = [&](const std::vector<int>& v) {
+    return v.size() == 3 ? cross(p[v[1]] - p[v[0]], p[v[2]] - p[v[0]]) : cross(p[v[2]] - p[v[0]], p[v[3]] - p[v[1]]);
+  };
+  const Vec3 nb = cap_normal(bottom), nt = cap_normal(top);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < bottom.size(); ++i) {
+    const Vec3 column = p[top[i]] - p[bottom[i]];
+    worst = std::max({worst, degrees_between(column, nb), degrees_between(column, nt)});
+  }
+  return worst;
+}
+
+// Affine images of the reference cells with their nodes moved, half of them far enough
+// for angles beyond 90 degrees (folded faces, columns leaning past their caps): the
+// pairs that decide twist and orthogonality are picked by cosine_key, and the largest
+// angle over all pairs must still be found.
+TEST(CellMetrics, TwistAndOrthogonalityAreTheLargestAnglesOverEveryPair) {
+  struct Case {
+    CellType type;
+    std::vector<Vec3> ref;
+    std::vector<std::vector<int>> quads;
+    std::vector<int> bottom, top;  // empty for types without caps
+  };
+  const std::vector<Case> cases = {
+      {CellType::kPyramid, test::unit_pyramid(0.7), {{0, 3, 2, 1}}, {}, {}},
+      {CellType::kWedge, test::right_prism(0.3), {{0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}}, {0, 2, 1}, {3, 5, 4}},
+      {CellType::kHex,
+       test::unit_hex(),
+       {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}},
+       {0, 1, 2, 3},
+       {4, 5, 6, 7}}};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  int n_obtuse = 0;
+  for (const Case& c : cases) {
+    for (int k = 0; k < 2000; ++k) {
+      double a[3][3];
+      for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 3; ++col) a[r][col] = (r == col ? 1.0 : 0.0) + u(rng);
+      const double moved = k % 2 == 0 ? 0.2 : 1.5;
+      std::vector<Vec3> p;
+      for (const Vec3& x : c.ref) {
+        Vec3 y;
+        for (int r = 0; r < 3; ++r) y[r] = a[r][0] * x[0] + a[r][1] * x[1] + a[r][2] * x[2] + moved * u(rng);
+        p.push_back(y);
+      }
+      const CellMetrics m = metrics(c.type, p);
+      const double twist = reference_twist(p, c.quads);
+      n_obtuse += twist > 90.0;
+      EXPECT_NEAR(m.twist_deg, twist, 1e-9) << cell_type_name(c.type) << " " << k;
+      if (c.bottom.empty()) continue;
+      const double ortho = reference_orthogonality(p, c.bottom, c.top);
+      n_obtuse += ortho > 90.0;
+      EXPECT_NEAR(m.orthogonality_deg, ortho, 1e-9) << cell_type_name(c.type) << " " << k;
+    }
+  }
+  // Obtuse angles, where a key without the cosine's sign would pick the smallest angle.
+  EXPECT_GT(n_obtuse, 200);
+}
+
 }  // namespace
 }  // namespace blayer
