@@ -183,6 +183,22 @@ double reference_skewness(const std::vector<Vec3>& p, const std::vector<std::vec
   return std::min(skew, 1.0);
 }
 
+// The cell under a random affine map (identity plus entries in [-0.3, 0.3]), each node
+// then moved by up to `moved` times 0.3 along each axis.
+std::vector<Vec3> random_affine_image(const std::vector<Vec3>& ref, double moved, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  double a[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) a[r][c] = (r == c ? 1.0 : 0.0) + u(rng);
+  std::vector<Vec3> p;
+  for (const Vec3& x : ref) {
+    Vec3 y;
+    for (int r = 0; r < 3; ++r) y[r] = a[r][0] * x[0] + a[r][1] * x[1] + a[r][2] * x[2] + moved * u(rng);
+    p.push_back(y);
+  }
+  return p;
+}
+
 // Affine images of the reference cells (congruent opposite faces, so nearly tied face
 // skewness) with some nodes moved: the faces and corners that decide the skewness are
 // picked by cosine, and the largest over all faces must still be found.
@@ -198,19 +214,10 @@ TEST(CellMetrics, SkewnessIsTheLargestOverFacesOfEveryCornerAngle) {
       {CellType::kWedge, test::right_prism(0.3), wedge_caps},
       {CellType::kHex, test::unit_hex(), hex_faces}};
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(-0.3, 0.3);
   for (const auto& [t, ref, faces] : cells) {
     for (int k = 0; k < 2000; ++k) {
-      double a[3][3];
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) a[r][c] = (r == c ? 1.0 : 0.0) + u(rng);
-      const double moved = k % 2 == 0 ? 0.0 : 0.2;  // every other cell also has its nodes moved
-      std::vector<Vec3> p;
-      for (const Vec3& x : ref) {
-        Vec3 y;
-        for (int r = 0; r < 3; ++r) y[r] = a[r][0] * x[0] + a[r][1] * x[1] + a[r][2] * x[2] + moved * u(rng);
-        p.push_back(y);
-      }
+      // Every other cell also has its nodes moved.
+      const std::vector<Vec3> p = random_affine_image(ref, k % 2 == 0 ? 0.0 : 0.2, rng);
       EXPECT_NEAR(metrics(t, p).skewness, reference_skewness(p, faces), 1e-9) << cell_type_name(t) << " " << k;
     }
   }
@@ -266,20 +273,10 @@ TEST(CellMetrics, TwistAndOrthogonalityAreTheLargestAnglesOverEveryPair) {
        {0, 1, 2, 3},
        {4, 5, 6, 7}}};
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-0.3, 0.3);
   int n_obtuse = 0;
   for (const Case& c : cases) {
     for (int k = 0; k < 2000; ++k) {
-      double a[3][3];
-      for (int r = 0; r < 3; ++r)
-        for (int col = 0; col < 3; ++col) a[r][col] = (r == col ? 1.0 : 0.0) + u(rng);
-      const double moved = k % 2 == 0 ? 0.2 : 1.5;
-      std::vector<Vec3> p;
-      for (const Vec3& x : c.ref) {
-        Vec3 y;
-        for (int r = 0; r < 3; ++r) y[r] = a[r][0] * x[0] + a[r][1] * x[1] + a[r][2] * x[2] + moved * u(rng);
-        p.push_back(y);
-      }
+      const std::vector<Vec3> p = random_affine_image(c.ref, k % 2 == 0 ? 0.2 : 1.5, rng);
       const CellMetrics m = metrics(c.type, p);
       const double twist = reference_twist(p, c.quads);
       n_obtuse += twist > 90.0;
