@@ -26,14 +26,17 @@ constexpr std::array<int, 4> kHexCorners[] = {{0, 1, 3, 4}, {1, 2, 0, 5}, {2, 3,
 
 double triple(const Vec3& a, const Vec3& b, const Vec3& c) { return dot(a, cross(b, c)); }
 
+// A squared length in [1e-150, 1e150]: products of two such vectors' components neither
+// overflow nor lose digits to underflow.
+bool moderate_square(double n2) { return n2 >= 1e-150 && n2 <= 1e150; }
+
 // Squared length and length of every edge of a cell, by node pair (both orders). Every
 // edge serves two corner Jacobians, two faces and the aspect ratio, so its length is
 // computed once. The square is the same number whichever way the edge is subtracted.
 struct EdgeLengths {
   double n2[8][8];
   double len[8][8];
-  // Every squared length in [1e-150, 1e150]: products of edge vectors neither overflow
-  // nor lose digits to underflow (see SkewFloors).
+  // Every squared length is moderate_square (see SkewFloors).
   bool moderate = true;
 };
 
@@ -52,7 +55,7 @@ void fill_edge_lengths(const std::array<int, 2> (&edges)[N], const Vec3* p, Edge
     const double len = std::sqrt(n2);
     e->n2[a][b] = e->n2[b][a] = n2;
     e->len[a][b] = e->len[b][a] = len;
-    e->moderate &= n2 >= 1e-150 && n2 <= 1e150;
+    e->moderate &= moderate_square(n2);
   }
 }
 
@@ -128,8 +131,7 @@ double cosine(const Vec3& a, double a_n2, const Vec3& b, double b_n2) {
 // can order two pairs differently only where their cosines agree to a few units in the
 // last place: angles near 0 closer than about 1e-8 radians, which neither resolves.
 double cosine_key(const Vec3& a, double a_n2, const Vec3& b, double b_n2) {
-  auto moderate = [](double n2) { return n2 >= 1e-150 && n2 <= 1e150; };
-  if (!moderate(a_n2) || !moderate(b_n2)) {
+  if (!moderate_square(a_n2) || !moderate_square(b_n2)) {
     const double c = cosine(a, a_n2, b, b_n2);
     return c * std::fabs(c);
   }
