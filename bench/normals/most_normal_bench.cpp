@@ -8,6 +8,9 @@
 //   ByShape/default/<shape>/<k>  the same CAD-like fans one shape at a time (ridge,
 //                            corner, rim, sliver; 32 fans, valence 20, 40, 60): where
 //                            the averages above come from
+//   Exact/default/<shape>/<k>  the same shapes with planar faces (offset 0), as a CAD
+//                            tessellation gives the wall: merged arcs, exact plateaus,
+//                            dozens of faces on one constraint circle
 //   Poles/<solver>/<k>       poles of bodies of revolution of valence k (every ring
 //                            point at one elevation), exact and with the ring moved by
 //                            1e-12, 1e-7 and 1e-5 of its radius
@@ -40,6 +43,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -97,11 +101,14 @@ std::vector<FanGeometry> fans_of_valence(int k, std::size_t count = 64) {
 
 // The first 32 non-degenerate CAD-like fans of one shape and valence k, offsets 1e-5
 // and 1e-3 in turn (ByShape: which shape the averages of ByValence come from).
-std::vector<FanGeometry> fans_of_shape(testing_fans::CadShape shape, int k) {
+// 32 CAD-like fans of one shape: offsets of 1e-5 and 1e-3 of the edge length in turn, or
+// none (`exact`: the faces planar, as a CAD tessellation gives the wall).
+std::vector<FanGeometry> fans_of_shape(testing_fans::CadShape shape, int k, bool exact = false) {
   std::vector<FanGeometry> fans;
   std::mt19937 rng(4242u + static_cast<unsigned>(k));
   for (int t = 0; fans.size() < 32 && t < 2000; ++t) {
-    FanGeometry g = testing_fans::geometry(testing_fans::cad_like_fan(rng, shape, k, t % 2 == 0 ? 1e-5 : 1e-3));
+    const double offset = exact ? 0.0 : (t % 2 == 0 ? 1e-5 : 1e-3);
+    FanGeometry g = testing_fans::geometry(testing_fans::cad_like_fan(rng, shape, k, offset));
     if (!g.any_degenerate) fans.push_back(std::move(g));
   }
   return fans;
@@ -150,7 +157,20 @@ double longest_vertex_us(Solver solver, const std::vector<FanGeometry>& fans, in
   return worst;
 }
 
-enum class Family { kMixed, kPoles, kPlateaus, kSlackPoles, kRidges, kCorners, kRims, kSlivers };
+enum class Family {
+  kMixed,
+  kPoles,
+  kPlateaus,
+  kSlackPoles,
+  kRidges,
+  kCorners,
+  kRims,
+  kSlivers,
+  kExactRidges,
+  kExactCorners,
+  kExactRims,
+  kExactSlivers
+};
 
 std::vector<FanGeometry> fans_of(Family family, int k) {
   switch (family) {
@@ -162,6 +182,10 @@ std::vector<FanGeometry> fans_of(Family family, int k) {
     case Family::kCorners: return fans_of_shape(testing_fans::CadShape::kCorner, k);
     case Family::kRims: return fans_of_shape(testing_fans::CadShape::kRim, k);
     case Family::kSlivers: return fans_of_shape(testing_fans::CadShape::kSliver, k);
+    case Family::kExactRidges: return fans_of_shape(testing_fans::CadShape::kRidge, k, true);
+    case Family::kExactCorners: return fans_of_shape(testing_fans::CadShape::kCorner, k, true);
+    case Family::kExactRims: return fans_of_shape(testing_fans::CadShape::kRim, k, true);
+    case Family::kExactSlivers: return fans_of_shape(testing_fans::CadShape::kSliver, k, true);
   }
   return {};
 }
@@ -214,14 +238,17 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(("ByValence/" + std::string(solver_name(s)) + "/" + std::to_string(k)).c_str(),
                                    by_valence, s, k, Family::kMixed);
     }
-  for (auto [family, shape] : {std::pair<Family, testing_fans::CadShape>{Family::kRidges, testing_fans::CadShape::kRidge},
-                                {Family::kCorners, testing_fans::CadShape::kCorner},
-                                {Family::kRims, testing_fans::CadShape::kRim},
-                                {Family::kSlivers, testing_fans::CadShape::kSliver}})
-    for (int k : {20, 40, 60})
-      benchmark::RegisterBenchmark(
-          ("ByShape/default/" + std::string(testing_fans::cad_shape_name(shape)) + "/" + std::to_string(k)).c_str(),
-          by_valence, Solver::kDefault, k, family);
+  using testing_fans::CadShape;
+  for (auto [family, exact, shape] : {std::tuple<Family, Family, CadShape>{Family::kRidges, Family::kExactRidges,
+                                                                           CadShape::kRidge},
+                                      {Family::kCorners, Family::kExactCorners, CadShape::kCorner},
+                                      {Family::kRims, Family::kExactRims, CadShape::kRim},
+                                      {Family::kSlivers, Family::kExactSlivers, CadShape::kSliver}})
+    for (int k : {20, 40, 60}) {
+      const std::string tail = std::string(testing_fans::cad_shape_name(shape)) + "/" + std::to_string(k);
+      benchmark::RegisterBenchmark(("ByShape/default/" + tail).c_str(), by_valence, Solver::kDefault, k, family);
+      benchmark::RegisterBenchmark(("Exact/default/" + tail).c_str(), by_valence, Solver::kDefault, k, exact);
+    }
   for (int k : {16, 32, 64, 96})
     for (Solver s : {Solver::kDefault, Solver::kPruned})
       benchmark::RegisterBenchmark(("Poles/" + std::string(solver_name(s)) + "/" + std::to_string(k)).c_str(),
