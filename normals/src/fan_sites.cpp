@@ -1,5 +1,6 @@
 #include "fan_sites.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace blayer {
@@ -45,6 +46,28 @@ void build_fan_sites(const FanGeometry& g, const Tolerances& tol, FanSites* out)
     s.arcs.push_back({g.dirs[i0], g.dirs[(i0 + len) % k], g.face_normals[i0], i0, len});
     c += len;
   }
+}
+
+void same_plane_runs(const FanGeometry& g, std::vector<int>* first) {
+  const int k = g.n_faces();
+  first->resize(k);
+  for (int j = 0; j < k; ++j) {
+    const int f = j > 0 ? (*first)[j - 1] : 0;
+    (*first)[j] = norm2(g.face_normals[j] - g.face_normals[f]) <= kSamePlaneNormal * kSamePlaneNormal ? f : j;
+  }
+}
+
+void drop_repeated_planes(const std::vector<int>& first, std::vector<int>* faces) {
+  thread_local std::vector<char> seen;
+  seen.assign(first.size(), 0);
+  faces->erase(std::remove_if(faces->begin(), faces->end(),
+                              [&](int i) {
+                                char& s = seen[first[i]];
+                                const bool repeated = s != 0;
+                                s = 1;
+                                return repeated;
+                              }),
+               faces->end());
 }
 
 }  // namespace detail

@@ -34,6 +34,23 @@ struct FanSites {
   bool all_reflex = false;           // every junction reflex or straight (convex corner)
 };
 
+// Faces whose unit normals lie within this (Euclidean) distance of a run's first face
+// are one plane for the candidate passes that go face by face (plateau peaks of V,
+// constraint circles): a fan-triangulated CAD face puts dozens of faces on one plane, and
+// their pairs would all be tried for candidates that coincide. Such normals differ by
+// rounding (about 1e-16, up to ~1e-14 for thin triangles); a candidate built on one
+// face's circle then misses the constraint of another of its run by at most 2e-13, five
+// times inside kConstraintSlack (1e-12), and is kept as that face's own would be.
+constexpr double kSamePlaneNormal = 1e-13;
+
+// The first face of each face's run of consecutive faces (in link order, from face 0)
+// within kSamePlaneNormal of that first face's normal; a face starting a run is its own.
+void same_plane_runs(const FanGeometry& g, std::vector<int>* first);
+
+// Keeps in *faces one face of each run of same_plane_runs (`first`), the first listed,
+// in the list's order: the candidates of that plane are built from it alone.
+void drop_repeated_planes(const std::vector<int>& first, std::vector<int>* faces);
+
 // Indices of the points and arcs of a FanSites taking part.
 struct SiteSubset {
   const int* points = nullptr;

@@ -279,6 +279,56 @@ TEST(PlateauEnvelope, PeaksAsHighAsAllPairwiseCrossings) {
   EXPECT_GT(n, 100);
 }
 
+// Faces of one plane form a run with the first face of the run (CAD fans drawn exactly:
+// a fan-triangulated face is one run; the sliver's skin is curved), and a run breaks only
+// where the next normal leaves the first one's tolerance (offset fans: every face its
+// own).
+TEST(SamePlaneRuns, GroupConsecutiveFacesWithinTheToleranceOfTheirRunsFirstFace) {
+  std::mt19937 rng(77);
+  int exact_fans = 0, offset_fans = 0;
+  for (double offset : {0.0, 1e-5})
+    for (testing_fans::CadShape shape : {testing_fans::CadShape::kRidge, testing_fans::CadShape::kCorner,
+                                         testing_fans::CadShape::kRim, testing_fans::CadShape::kSliver})
+      for (int t = 0; t < 12; ++t) {
+        const FanGeometry g = testing_fans::geometry(testing_fans::cad_like_fan(rng, shape, 24, offset));
+        if (g.any_degenerate) continue;
+        std::vector<int> first;
+        detail::same_plane_runs(g, &first);
+        ASSERT_EQ(static_cast<int>(first.size()), g.n_faces());
+        int runs = 0;
+        for (int j = 0; j < g.n_faces(); ++j) {
+          ASSERT_LE(first[j], j);
+          EXPECT_LE(norm(g.face_normals[j] - g.face_normals[first[j]]), detail::kSamePlaneNormal) << j;
+          if (first[j] != j) {
+            EXPECT_EQ(first[j], first[j - 1]) << j;
+            continue;
+          }
+          ++runs;
+          if (j > 0) EXPECT_GT(norm(g.face_normals[j] - g.face_normals[first[j - 1]]), detail::kSamePlaneNormal) << j;
+        }
+        if (offset == 0.0 && shape != testing_fans::CadShape::kSliver) {
+          ++exact_fans;
+          // The fan-triangulated face (k - 3 or more faces of the 24) is one run.
+          EXPECT_LE(runs, 8) << testing_fans::cad_shape_name(shape) << " " << t;
+        } else if (offset > 0.0) {
+          ++offset_fans;
+          EXPECT_EQ(runs, g.n_faces()) << testing_fans::cad_shape_name(shape) << " " << t;
+        }
+      }
+  EXPECT_GT(exact_fans, 30);
+  EXPECT_GT(offset_fans, 40);
+}
+
+TEST(DropRepeatedPlanes, KeepsTheFirstListedFaceOfEachRunInTheListsOrder) {
+  const std::vector<int> first = {0, 0, 0, 3, 3, 5};
+  std::vector<int> faces = {4, 1, 2, 3, 5, 0};
+  detail::drop_repeated_planes(first, &faces);
+  EXPECT_EQ(faces, (std::vector<int>{4, 1, 5}));
+  std::vector<int> one_each = {2, 3, 5};
+  detail::drop_repeated_planes(first, &one_each);
+  EXPECT_EQ(one_each, (std::vector<int>{2, 3, 5}));
+}
+
 // The pair bound of the subdivision holds on every sampled direction of the cap, rim
 // included, for random and for nearly antipodal pairs of link directions.
 TEST(SiteSubdivision, PairBoundHoldsOnEverySampledDirectionOfTheCap) {
