@@ -134,15 +134,20 @@ void enumerate_constraint_circles(const FanSites& s, CandidatePool* pool) {
 }
 
 void enumerate_plateau_peaks(const FanSites& s, CandidatePool* pool) {
+  std::vector<int> faces(pool->geometry().n_faces());
+  std::iota(faces.begin(), faces.end(), 0);
+  enumerate_plateau_peaks(s, pool, faces);
+}
+
+void enumerate_plateau_peaks(const FanSites& s, CandidatePool* pool, const std::vector<int>& faces) {
   const Subsets sub(s);
   std::vector<PlateauCircle> circles;
   plateau_circles(s, sub.all, pool->tolerances().normality_tie, pool->best_constrained(), &circles);
   const FanGeometry& g = pool->geometry();
-  std::vector<int> faces(g.n_faces());
-  std::iota(faces.begin(), faces.end(), 0);
   std::vector<double> ca, cb, cc;
+  const int n = static_cast<int>(faces.size());
   for (const PlateauCircle& c : circles)
-    plateau_peaks(g, c, faces.data(), g.n_faces(), &ca, &cb, &cc, [pool](const Vec3& n) { pool->consider(n); });
+    plateau_peaks(g, c, faces.data(), n, &ca, &cb, &cc, [pool](const Vec3& n) { pool->consider(n); });
 }
 
 }  // namespace detail

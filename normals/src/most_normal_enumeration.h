@@ -29,8 +29,11 @@ void enumerate_screened(const FanSites& s, CandidatePool* pool);
 // constrained pass first).
 void enumerate_constraint_circles(const FanSites& s, CandidatePool* pool);
 
-// The visibility peaks along the plateau circles of every concentric pair of sites.
+// The visibility peaks along the plateau circles of every concentric pair of sites: of V
+// over all the faces, or in the second form over `faces` (V's peaks are built from
+// them; every candidate is still evaluated over all faces).
 void enumerate_plateau_peaks(const FanSites& s, CandidatePool* pool);
+void enumerate_plateau_peaks(const FanSites& s, CandidatePool* pool, const std::vector<int>& faces);
 
 // Diagnostics for tests and benches: the maximisers (directions within the tie of the
 // optimum, with their D and V) that most_normal_by_enumeration (or, with `by_default`,

@@ -714,17 +714,26 @@ void SiteSubdivision::plateau_peaks() {
   const double d_best = pool_.best_constrained();
   std::vector<PlateauCircle> circles;
   std::vector<double> ca, cb, cc;
+  std::vector<int> faces;
   for (const Leaf& leaf : leaves_) {
     if (!leaf_alive(leaf, false)) continue;
     circles.clear();
     plateau_circles(s_, subset(leaf), tie, d_best, &circles);
+    if (circles.empty()) continue;
+    faces.assign(leaf_ids_.data() + leaf.faces_begin, leaf_ids_.data() + leaf.faces_begin + leaf.n_faces);
+    one_face_per_plane(&faces);
     auto emit = [&](const Vec3& n) { offer(leaf, n); };
     for (const PlateauCircle& circ : circles) {
       if (std::fabs(dot(leaf.c, circ.h) - circ.c0) > leaf.rho + kBoundMargin) continue;
-      plateau_envelope_peaks(g_, circ, leaf_ids_.data() + leaf.faces_begin, leaf.n_faces, leaf.c,
-                             leaf.cos_cap, &ca, &cb, &cc, emit);
+      plateau_envelope_peaks(g_, circ, faces.data(), static_cast<int>(faces.size()), leaf.c, leaf.cos_cap, &ca, &cb,
+                             &cc, emit);
     }
   }
+}
+
+void SiteSubdivision::one_face_per_plane(std::vector<int>* faces) {
+  if (same_plane_.empty()) same_plane_runs(g_, &same_plane_);
+  drop_repeated_planes(same_plane_, faces);
 }
 
 // A face whose visibility exceeds another's by more than the feasibility slack all over
@@ -815,6 +824,7 @@ void SiteSubdivision::constraint_circles() {
       if (std::fabs(dot(leaf.c, g_.face_normals[i]) - v_min) <= leaf.rho + kBoundMargin) crossing.push_back(i);
     }
     drop_circles_below_another(leaf, &crossing);
+    one_face_per_plane(&crossing);
     if (crossing.empty()) continue;
     auto emit = [&](const Vec3& n) { offer(leaf, n); };
     constraint_candidates(g_, s_, subset(leaf), crossing.data(), static_cast<int>(crossing.size()), v_min, emit,
