@@ -25,6 +25,7 @@
 //   Tail/default/<k>         ByValence's CAD-like fans drawn on to 400 (100 per shape):
 //                            the slowest single vertices, which 64 fans can miss
 //                            (max_vertex_us, and over_1ms: how many take longer)
+//   TailExact/default/<k>    the same scan over 400 fans with planar faces (offset 0)
 //   Mesh/<solver>/<surface>/<wall|front>
 //                            every closed vertex of the surface, and of its first offset
 //                            front (bench/normals/front_march.h)
@@ -78,8 +79,9 @@ const char* solver_name(Solver s) {
   return "";
 }
 
-// The first `count` non-degenerate fans of valence k (ByValence takes 64).
-std::vector<FanGeometry> fans_of_valence(int k, std::size_t count = 64) {
+// The first `count` non-degenerate fans of valence k (ByValence takes 64); with `exact`,
+// CAD-like fans of valence 12 or more are drawn with planar faces (offset 0).
+std::vector<FanGeometry> fans_of_valence(int k, std::size_t count = 64, bool exact = false) {
   std::vector<FanGeometry> fans;
   std::mt19937 rng(4242u + static_cast<unsigned>(k));
   for (int t = 0; fans.size() < count && t < 4000; ++t) {
@@ -91,7 +93,8 @@ std::vector<FanGeometry> fans_of_valence(int k, std::size_t count = 64) {
       const double k2 = t % 3 == 1 ? -0.5 * u(rng) : 1e-3 * (u(rng) - 0.5);
       ring = testing_fans::quadric_fan(rng, k, k1, k2, 1e-3 * u(rng));
     } else {
-      ring = testing_fans::cad_like_fan(rng, static_cast<testing_fans::CadShape>(t % 4), k, t % 3 == 0 ? 1e-5 : 1e-3);
+      const double offset = exact ? 0.0 : (t % 3 == 0 ? 1e-5 : 1e-3);
+      ring = testing_fans::cad_like_fan(rng, static_cast<testing_fans::CadShape>(t % 4), k, offset);
     }
     FanGeometry g = testing_fans::geometry(ring);
     if (!g.any_degenerate) fans.push_back(std::move(g));
@@ -201,8 +204,8 @@ void by_valence(benchmark::State& state, Solver solver, int k, Family family) {
   if (solver == Solver::kDefault) state.counters["max_vertex_us"] = longest_vertex_us(solver, fans);
 }
 
-void tail(benchmark::State& state, int k) {
-  const std::vector<FanGeometry> fans = fans_of_valence(k, 400);
+void tail(benchmark::State& state, int k, bool exact) {
+  const std::vector<FanGeometry> fans = fans_of_valence(k, 400, exact);
   for (auto _ : state)
     for (const FanGeometry& g : fans) benchmark::DoNotOptimize(solve(Solver::kDefault, g));
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(fans.size()));
@@ -260,7 +263,10 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("SlackPoles/default/" + std::to_string(k)).c_str(), by_valence, Solver::kDefault,
                                  k, Family::kSlackPoles);
   for (int k : {20, 40, 60})
-    benchmark::RegisterBenchmark(("Tail/default/" + std::to_string(k)).c_str(), tail, k)->Unit(benchmark::kMillisecond);
+    for (bool exact : {false, true})
+      benchmark::RegisterBenchmark(((exact ? "TailExact/default/" : "Tail/default/") + std::to_string(k)).c_str(), tail,
+                                   k, exact)
+          ->Unit(benchmark::kMillisecond);
   // Surfaces given after the benchmark flags; their fans live until the run ends.
   std::vector<std::vector<FanGeometry>*> keep;
   for (int i = 1; i < argc; ++i) {
