@@ -1,9 +1,10 @@
-// most_normal_tail_scan [first_seed [seeds [fans_per_valence]]]
+// most_normal_tail_scan [first_seed [seeds [fans_per_valence [exact]]]]
 // The slowest single vertex solves of the default most-normal solver over many more
 // generated CAD-like fans than the benchmark holds (most_normal_bench's Tail keeps 400 per
 // valence in memory): fans are drawn one at a time, seeds first_seed .. first_seed +
 // seeds - 1 (default 101, 40 seeds, 2,000 fans per valence and seed), valences 20 to 60,
-// with the shapes and offsets of the benchmark's fans (tests/normals/cad_fans.h).
+// with the shapes and offsets of the benchmark's fans (tests/normals/cad_fans.h); with
+// a fourth argument `exact`, the same shapes with planar faces (offset 0).
 // Each fan is solved once, and again up to twice more when it took over 300 us, keeping
 // the fastest (a single reading is often a preemption of the shared machine). Prints,
 // per valence, the solves per second, the slowest vertex and how many took over a
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "blayer/normals/most_normal.h"
@@ -52,6 +54,7 @@ int main(int argc, char** argv) {
   const unsigned first_seed = argc > 1 ? static_cast<unsigned>(std::atoi(argv[1])) : 101u;
   const int seeds = argc > 2 ? std::atoi(argv[2]) : 40;
   const int per_valence = argc > 3 ? std::atoi(argv[3]) : 2000;
+  const bool exact = argc > 4 && std::string(argv[4]) == "exact";
   const int valences[] = {20, 30, 40, 50, 60};
   ValenceTally tally[5];
   std::vector<SlowFan> slow;
@@ -61,8 +64,9 @@ int main(int argc, char** argv) {
       const unsigned seed = first_seed + static_cast<unsigned>(s);
       std::mt19937 rng(seed + static_cast<unsigned>(k));
       for (int t = 0; t < per_valence; ++t) {
-        const FanGeometry g = testing_fans::geometry(
-            testing_fans::cad_like_fan(rng, static_cast<testing_fans::CadShape>(t % 4), k, t % 3 == 0 ? 1e-5 : 1e-3));
+        const double offset = exact ? 0.0 : (t % 3 == 0 ? 1e-5 : 1e-3);
+        const FanGeometry g =
+            testing_fans::geometry(testing_fans::cad_like_fan(rng, static_cast<testing_fans::CadShape>(t % 4), k, offset));
         if (g.any_degenerate) continue;
         MostNormalResult r;
         const double us = solve_us(g, &r);
@@ -76,7 +80,8 @@ int main(int argc, char** argv) {
         }
       }
     }
-  std::printf("seeds %u..%u, %d fans per valence and seed\n", first_seed, first_seed + seeds - 1, per_valence);
+  std::printf("seeds %u..%u, %d fans per valence and seed%s\n", first_seed, first_seed + seeds - 1, per_valence,
+              exact ? ", planar faces" : "");
   long fans = 0, over = 0;
   double slowest = 0.0;
   for (int v = 0; v < 5; ++v) {
