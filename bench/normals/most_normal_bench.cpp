@@ -103,9 +103,8 @@ std::vector<FanGeometry> fans_of_valence(int k, std::size_t count = 64, bool exa
 }
 
 // The first 32 non-degenerate CAD-like fans of one shape and valence k, offsets 1e-5
-// and 1e-3 in turn (ByShape: which shape the averages of ByValence come from).
-// 32 CAD-like fans of one shape: offsets of 1e-5 and 1e-3 of the edge length in turn, or
-// none (`exact`: the faces planar, as a CAD tessellation gives the wall).
+// and 1e-3 in turn (ByShape: which shape the averages of ByValence come from), or none
+// (`exact`: the faces planar, as a CAD tessellation gives the wall).
 std::vector<FanGeometry> fans_of_shape(testing_fans::CadShape shape, int k, bool exact = false) {
   std::vector<FanGeometry> fans;
   std::mt19937 rng(4242u + static_cast<unsigned>(k));
@@ -248,9 +247,9 @@ int main(int argc, char** argv) {
                                       {Family::kRims, Family::kExactRims, CadShape::kRim},
                                       {Family::kSlivers, Family::kExactSlivers, CadShape::kSliver}})
     for (int k : {20, 40, 60}) {
-      const std::string tail = std::string(testing_fans::cad_shape_name(shape)) + "/" + std::to_string(k);
-      benchmark::RegisterBenchmark(("ByShape/default/" + tail).c_str(), by_valence, Solver::kDefault, k, family);
-      benchmark::RegisterBenchmark(("Exact/default/" + tail).c_str(), by_valence, Solver::kDefault, k, exact);
+      const std::string label = std::string(testing_fans::cad_shape_name(shape)) + "/" + std::to_string(k);
+      benchmark::RegisterBenchmark(("ByShape/default/" + label).c_str(), by_valence, Solver::kDefault, k, family);
+      benchmark::RegisterBenchmark(("Exact/default/" + label).c_str(), by_valence, Solver::kDefault, k, exact);
     }
   for (int k : {16, 32, 64, 96})
     for (Solver s : {Solver::kDefault, Solver::kPruned})
