@@ -731,9 +731,16 @@ void SiteSubdivision::plateau_peaks() {
   }
 }
 
+bool SiteSubdivision::planes_repeat() {
+  if (same_plane_.empty()) {
+    same_plane_runs(g_, &same_plane_);
+    for (int j = 0; j < k_; ++j) planes_repeat_ = planes_repeat_ || same_plane_[j] != j;
+  }
+  return planes_repeat_;
+}
+
 void SiteSubdivision::one_face_per_plane(std::vector<int>* faces) {
-  if (same_plane_.empty()) same_plane_runs(g_, &same_plane_);
-  drop_repeated_planes(same_plane_, faces);
+  if (planes_repeat()) drop_repeated_planes(same_plane_, faces);
 }
 
 // A face whose visibility exceeds another's by more than the feasibility slack all over
@@ -755,9 +762,13 @@ void SiteSubdivision::drop_circles_below_another(const Leaf& leaf, std::vector<i
   // The leaf's faces by visibility at its centre, lowest first: a face lies below face i
   // all over the leaf only if it does at the centre by more than the slack
   // (cap_min_dot <= c.(f_i - f_l)), so the search for one stops there.
+  // Only the first face of each plane's run (same_plane_runs) is a candidate below: a
+  // face left out only keeps circles that it would have dropped.
+  const bool repeat = planes_repeat();
   by_visibility_.clear();
   for (int t = 0; t < leaf.n_faces; ++t) {
     const int l = leaf_ids_[leaf.faces_begin + t];
+    if (repeat && same_plane_[l] != l) continue;
     by_visibility_.push_back({dot(leaf.c, g_.face_normals[l]), l});
   }
   std::sort(by_visibility_.begin(), by_visibility_.end());
@@ -823,8 +834,8 @@ void SiteSubdivision::constraint_circles() {
       const int i = leaf_ids_[leaf.faces_begin + t];
       if (std::fabs(dot(leaf.c, g_.face_normals[i]) - v_min) <= leaf.rho + kBoundMargin) crossing.push_back(i);
     }
-    drop_circles_below_another(leaf, &crossing);
     one_face_per_plane(&crossing);
+    drop_circles_below_another(leaf, &crossing);
     if (crossing.empty()) continue;
     auto emit = [&](const Vec3& n) { offer(leaf, n); };
     constraint_candidates(g_, s_, subset(leaf), crossing.data(), static_cast<int>(crossing.size()), v_min, emit,

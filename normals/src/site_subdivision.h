@@ -358,6 +358,9 @@ class SiteSubdivision {
   void drop_circles_below_another(const Leaf& leaf, std::vector<int>* crossing);
   // drop_repeated_planes on the faces of a face-by-face pass.
   void one_face_per_plane(std::vector<int>* faces);
+  // Whether some face repeats the plane of the face before it (same_plane_runs), made on
+  // first use with same_plane_.
+  bool planes_repeat();
   void record_leaf(const Cell& cell, double d, double v, int faces_begin, int faces_end, bool invisible);
   void offer(const Leaf& leaf, const Vec3& n);
   void offer_anywhere(const Vec3& n);
@@ -386,8 +389,9 @@ class SiteSubdivision {
   // Scratch of the constraint-circle pass: (c.f_i, i) of a leaf's faces.
   RecycledVector<std::pair<double, int>> by_visibility_;
   // same_plane_runs of the fan, made by the first face-by-face pass that needs it
-  // (plane_faces).
+  // (planes_repeat), and whether any run holds more than one face.
   std::vector<int> same_plane_;
+  bool planes_repeat_ = false;
   int pair_tries_ = 0, pair_drops_ = 0, pair_skips_ = 0;
   int stamp_ = 0;
   RecycledVector<int> leaf_points_, leaf_arcs_;  // scratch of the cell being classified
