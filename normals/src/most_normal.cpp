@@ -212,6 +212,8 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
     capped = cap.feasible;
   }
   double radius = -1.0;
+  // A fluid cap antipode that fails the visibility constraint (see below).
+  double invisible_antipode_d = -std::numeric_limits<double>::infinity();
   if (capped) {
     // The antipode is a lower bound only: when it is the optimum its generators build it
     // exactly, and the rounding of the cap must not enter the tie-break. Except on a cap
@@ -219,13 +221,16 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
     // from its generators would take every triple of them.
     double d;
     bool fluid;
-    if (pool->evaluate(-cap.normal, -std::numeric_limits<double>::infinity(), &d, &fluid) && fluid &&
-        (!pool->constrained() || fan_visibility(g, -cap.normal) >= pool->v_min() - detail::kConstraintSlack)) {
-      pool->raise_floor(-cap.normal, d);
-      if (bound_reached_by_many(g, sites, cap, d, tol)) {
-        pool->consider(-cap.normal);
-        *n_cells = 0;
-        return false;
+    if (pool->evaluate(-cap.normal, -std::numeric_limits<double>::infinity(), &d, &fluid) && fluid) {
+      if (!pool->constrained() || fan_visibility(g, -cap.normal) >= pool->v_min() - detail::kConstraintSlack) {
+        pool->raise_floor(-cap.normal, d);
+        if (bound_reached_by_many(g, sites, cap, d, tol)) {
+          pool->consider(-cap.normal);
+          *n_cells = 0;
+          return false;
+        }
+      } else {
+        invisible_antipode_d = d;
       }
     }
     const double thr = pool->threshold();
@@ -248,6 +253,13 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
   } else {
     subdivision().unconstrained_candidates();
   }
+  // An invisible antipode above every candidate: the candidate formulas missed the
+  // unconstrained optimum (at a degenerate link, as the floor does below in solve), and
+  // with it that the constraint binds. It is offered, infeasible, so that the constraint
+  // circles are searched: on a sliver wing's tip (a link arc of 2e-6 rad, two reflex link
+  // vertices 2.3e-7 from antipodal) the answer was otherwise the 90-degree plateau, 1.1e-7
+  // rad below the constrained optimum.
+  if (invisible_antipode_d > pool->best_unconstrained() + tol.normality_tie) pool->consider(-cap.normal);
   bool non_unique;
   if (subdivided) {
     non_unique = subdivision().remaining_passes();

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 #include "blayer/normals/most_normal.h"
 #include "blayer/normals/most_visible.h"
@@ -87,6 +88,32 @@ TEST(MostNormal, GenericSaddlesKeepHalfTheBestVisibility) {
     }
   }
   RecordProperty("visibility_constrained", n_limited);
+}
+
+// The trailing-edge tip of the CAD-tessellated sliver wing (bench/make_sliver_wing.py,
+// wall vertex 5996): a link arc of 2e-6 rad and two reflex link vertices 2.3e-7 from
+// antipodal. D peaks 1.1e-7 rad above 90 degrees at the cap antipode, which is invisible;
+// the constrained optimum lies on the constraint circle beside it. The candidates built
+// from the sites miss both, and the answer was the 90-degree plateau: 1.1e-7 rad short,
+// a hundred times the tie.
+TEST(MostNormal, DegenerateTipWhoseOnlyHigherDirectionIsTheInvisibleCapAntipode) {
+  const std::vector<Vec3> ring = {{0.0, 0.0, -1.0},
+                                  {-1.8524008585929508e-06, 2.692459246889101e-07, -1.0},
+                                  {-1.8524008585929508e-06, 2.692459246889101e-07, 0.0},
+                                  {0.0, -1.7949771887182385e-07, 0.0},
+                                  {6.1746746116142504e-07, -8.9748859452565267e-08, 0.0}};
+  const FanGeometry g = testing_fans::geometry(ring);
+  ASSERT_FALSE(g.any_degenerate);
+  const oracle::Link link = oracle::make_link(ring);
+  const double v_min = 0.5 * most_visible_normal(g.face_normals).visibility;
+  const MostNormalResult mn = most_normal_normal(g);
+  EXPECT_EQ(mn.status, NormalStatus::kVisibilityConstrained);
+  EXPECT_EQ(oracle::fluid(link, mn.normal), 1);
+  EXPECT_GE(oracle::visibility(link, mn.normal), v_min - 1e-12);
+  EXPECT_NEAR(mn.normality, oracle::normality(link, mn.normal), 1e-12);
+  const oracle::Best best = oracle::maximise(link, v_min, 200000, 7u);
+  EXPECT_GT(best.d, 0.5 * M_PI + 1e-7);  // the oracle does find the optimum above the plateau
+  EXPECT_GE(mn.normality, best.d - default_tolerances().normality_tie);
 }
 
 }  // namespace
