@@ -254,11 +254,11 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
     subdivision().unconstrained_candidates();
   }
   // An invisible antipode above every candidate: the candidate formulas missed the
-  // unconstrained optimum (at a degenerate link, as the floor does below in solve), and
-  // with it that the constraint binds. It is offered, infeasible, so that the constraint
-  // circles are searched: on a sliver wing's tip (a link arc of 2e-6 rad, two reflex link
-  // vertices 2.3e-7 from antipodal) the answer was otherwise the 90-degree plateau, 1.1e-7
-  // rad below the constrained optimum.
+  // unconstrained optimum at a degenerate link (solve() catches a missed feasible one
+  // with the floor), and with it that the constraint binds. It is offered, infeasible, so
+  // that the constraint circles are searched: on a sliver wing's tip (a link arc of 2e-6
+  // rad, two reflex link vertices 2.3e-7 from antipodal) the answer was otherwise the
+  // 90-degree plateau, 1.1e-7 rad below the constrained optimum.
   if (invisible_antipode_d > pool->best_unconstrained() + tol.normality_tie) pool->consider(-cap.normal);
   bool non_unique;
   if (subdivided) {
