@@ -86,9 +86,9 @@ inline std::vector<SiteView> independent_sites(const FanGeometry& g, const Vec3&
 }
 
 // Whether unit x is a maximiser that any exact solver must find: a point where three
-// sites tie (a Voronoi vertex), or where two nearly tie and D is largest along their
-// bisector, or a local maximum of D among all directions (1e-7 and 1e-6 away, more than
-// rounding).
+// sites tie (a Voronoi vertex), or a local maximum of D among all directions (1e-7 and
+// 1e-6 away, more than rounding) that, where the two nearest sites nearly tie, also
+// gains nothing along their bisector.
 inline bool genuine_maximizer(const FanGeometry& g, const Vec3& x) {
   const double d = fan_normality(g, x);
   const std::vector<SiteView> sites = independent_sites(g, x);
@@ -110,7 +110,11 @@ inline bool genuine_maximizer(const FanGeometry& g, const Vec3& x) {
     const SiteView& b = sites[1];
     const bool circle = a.point == b.point;
     const Vec3 t = circle ? normalized(cross(x, a.axis - b.axis)) : normalized(cross(x, a.gradient - b.gradient));
-    if (norm2(t) > 0.0) return !gains(t, circle ? 3e-2 : 1e-6);
+    if (norm2(t) > 0.0 && gains(t, circle ? 3e-2 : 1e-6)) return false;
+    // No gain along it is not enough: a point where two other sites tie exactly and the
+    // nearest lies 1.5e-9 below them (a pair candidate placed beside a three-site vertex)
+    // gains nothing along the first two's bisector, yet D rises towards that vertex.
+    // It must also be a local maximum.
   }
   const Vec3 e1 = normalized(cross(x, std::fabs(x[0]) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
   const Vec3 e2 = cross(x, e1);

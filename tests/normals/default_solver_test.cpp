@@ -111,6 +111,39 @@ TEST(AgreementRule, PointBesideAPlateauIsNotGenuine) {
   EXPECT_TRUE(testing_fans::genuine_maximizer(t4, normalized(Vec3{std::cos(0.3), 0.0, std::sin(0.3)})));
 }
 
+// ...and a pair candidate placed beside a three-site vertex: vertex 11602 of the 717
+// wing's first simulated offset front (bench/normals/front_march.h), valence 6, D just
+// above 90 degrees. At the enumeration's answer two point sites tie exactly and the
+// nearest lies 1.5e-9 below them, so walking along the bisector of the nearest two
+// gains nothing; yet D rises by 9.8e-10 towards the vertex where all three tie, 2.4e-7
+// away, which the default solver returns. The enumeration's point won its tie-break by
+// a V higher by 1.2e-7 and was counted as a missed maximiser.
+TEST(AgreementRule, PairCandidateBesideAThreeSiteVertexIsNotGenuine) {
+  const Vec3 p{6.1694961327270592, -0.0092774926902843783, 4.0828275839431667};
+  const std::vector<Vec3> ring{{6.1731955699102956, -0.0059778259597887302, 4.0821145558619127},
+                               {6.3026998124340166, -0.0089740049717075988, 4.5462590732734967},
+                               {6.2997733344287612, -0.0098557501767220657, 4.5465742245824954},
+                               {6.1673207499209965, -0.0098543173757228326, 4.08294828693339},
+                               {6.0397286311250094, -0.0092653199812735357, 3.6285490124542483},
+                               {6.0439407919647472, -0.0049436952354650308, 3.6276725533543193}};
+  const FanGeometry g = build_fan_geometry(p, ring, true);
+  ASSERT_FALSE(g.any_degenerate);
+  const Vec3 beside{0.27966479248218717, -0.9567726509844523, -0.079835444346974344};
+  const Vec3 vertex{0.27966456791406874, -0.95677272193034435, -0.079835380774673045};
+  // Independent of the rule: D is higher at the vertex, within the tie.
+  const double tie = default_tolerances().normality_tie;
+  EXPECT_GT(fan_normality(g, vertex), fan_normality(g, beside) + 5e-10);
+  EXPECT_LT(fan_normality(g, vertex), fan_normality(g, beside) + tie);
+  EXPECT_FALSE(testing_fans::genuine_maximizer(g, beside));
+  EXPECT_TRUE(testing_fans::genuine_maximizer(g, vertex));
+  for (bool constrained : {true, false}) {
+    const MostNormalResult a = most_normal_normal(g, default_tolerances(), constrained);
+    const MostNormalResult b = most_normal_by_enumeration(g, default_tolerances(), constrained);
+    const testing_fans::Agreement verdict = testing_fans::compare_optimum(g, constrained, a, b);
+    EXPECT_TRUE(verdict.ok) << verdict.why;
+  }
+}
+
 // The pole of a body of revolution: every link vertex holds the cap of the link
 // vertices, so every triple of them builds the optimum and the generators' candidates
 // number C(k, 3) (a valence-96 pole used to take minutes). The link-vertex bound
