@@ -2,6 +2,7 @@
 // independent D routine) on random fans: the oracle must never beat it.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -113,6 +114,40 @@ TEST(MostNormal, DegenerateTipWhoseOnlyHigherDirectionIsTheInvisibleCapAntipode)
   EXPECT_NEAR(mn.normality, oracle::normality(link, mn.normal), 1e-12);
   const oracle::Best best = oracle::maximise(link, v_min, 200000, 7u);
   EXPECT_GT(best.d, 0.5 * M_PI + 1e-7);  // the oracle does find the optimum above the plateau
+  EXPECT_GE(mn.normality, best.d - default_tolerances().normality_tie);
+}
+
+// The fan of a vertex with centre p and ring `ring`, as the oracle's link (centred at 0).
+oracle::Link link_around(const Vec3& p, std::vector<Vec3> ring) {
+  for (Vec3& r : ring) r -= p;
+  return oracle::make_link(ring);
+}
+
+// A vertex of the ONERA M6 571k's sharp trailing edge (vertex 563): its spanwise
+// neighbours (ring 2 and 5) are antipodal to 7.7e-9, so D peaks 3.9e-9 above 90 degrees
+// on their bisector, opposite their sum. The sum's rounding had turned that candidate
+// 5e-7 rad off the bisector, below 90 degrees, and the answer was the 90-degree plateau.
+TEST(MostNormal, TrailingEdgePeakBetweenNearlyAntipodalNeighboursIsReached) {
+  const Vec3 p{0.85391741200000004, 0.1545780883, -3.1299120709999999e-10};
+  const std::vector<Vec3> ring{{0.85120637730000004, 0.15286761239999999, -0.00027608826649999998},
+                               {0.85215374460000004, 0.1562295974, -0.0002757320152},
+                               {0.85486145390000001, 0.15793848160000001, -3.19794276e-10},
+                               {0.85215374430000002, 0.15622959750000001, 0.00027572924220000002},
+                               {0.85120637700000001, 0.1528676125, 0.0002760854955},
+                               {0.85297337009999996, 0.15121769509999999, -3.0618813820000002e-10}};
+  const FanGeometry g = build_fan_geometry(p, ring, true);
+  ASSERT_FALSE(g.any_degenerate);
+  const MostNormalResult mn = most_normal_normal(g);
+  const oracle::Link link = link_around(p, ring);
+  // Analytic: on the bisector of unit a, b the nearest distance peaks at pi/2 + asin(|a + b| / 2).
+  const Vec3 sum = g.dirs[2] + g.dirs[5];
+  const double peak = 0.5 * M_PI + std::asin(0.5 * norm(sum));
+  EXPECT_GT(peak, 0.5 * M_PI + 3e-9);
+  EXPECT_EQ(oracle::fluid(link, mn.normal), 1);
+  EXPECT_NEAR(mn.normality, oracle::normality(link, mn.normal), 1e-12);
+  EXPECT_GE(mn.normality, peak - 1e-12);
+  const double v_min = 0.5 * most_visible_normal(g.face_normals).visibility;
+  const oracle::Best best = oracle::maximise(link, v_min, 200000, 7u);
   EXPECT_GE(mn.normality, best.d - default_tolerances().normality_tie);
 }
 

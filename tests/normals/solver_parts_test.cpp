@@ -250,6 +250,26 @@ TEST(LinkVertexLens, HoldsEverySampledDirectionOfItsRegion) {
 
 // The envelope sweep emits a point of largest V inside the window, as high as the best
 // of all single peaks and pairwise crossings there.
+// The bisector peak of two unit sites a, b (a + b in exact arithmetic): for nearly
+// opposite sites it stays on the bisector {n.a = n.b} to rounding, where the plain sum
+// strays by ~1e-16 / |a + b|; for nearly equal sites it is the sum's direction, where a
+// projection on the ill-conditioned plane {x.(a - b) = 0} would stray as much.
+TEST(CandidateFamilies, BisectorPeakStaysOnTheBisectorOfNearlyOppositeOrEqualSites) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> nd;
+  for (int t = 0; t < 200; ++t) {
+    const Vec3 a = normalized(Vec3{nd(rng), nd(rng), nd(rng)});
+    const Vec3 tilt = normalized(Vec3{nd(rng), nd(rng), nd(rng)});
+    const double eps = std::pow(10.0, -6.0 - 3.0 * (t % 4));  // 1e-6 to 1e-15
+    const Vec3 opposite = normalized(-a + eps * tilt), near = normalized(a + eps * tilt);
+    const Vec3 n = normalized(detail::bisector_peak(a, opposite));
+    ASSERT_GT(norm(n), 0.5) << t;
+    EXPECT_LE(std::fabs(dot(n, a) - dot(n, opposite)), 1e-15) << "opposite, eps " << eps;
+    const Vec3 m = normalized(detail::bisector_peak(a, near));
+    EXPECT_LE(angle_between(m, normalized(a + near)), 1e-15) << "near, eps " << eps;
+  }
+}
+
 TEST(PlateauEnvelope, PeaksAsHighAsAllPairwiseCrossings) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(0.0, 1.0);
