@@ -15,8 +15,12 @@ namespace detail {
 
 // The smallest radius r of the schedule 1e-7 * 4^m (m = 0, 1, ...), up to max_radius,
 // for which the circle {angle(n, centre) = r} is proved disjoint from L, so that
-// L lies in B(centre, r). Preconditions: thr > pi/2, g(centre) >= thr, unit dirs.
-// Returns a negative value when no such r <= max_radius is found.
+// L lies in B(centre, r). Preconditions: thr > pi/2, unit dirs. Returns a negative value
+// when no such r <= max_radius is found, or when the centre is not inside L with a
+// margin of 1e-12 in the cosines: the argument needs a point of L, and a cap antipode
+// computed for a nearly flat link can miss it (Wolfe's certificate bounds V* only to
+// 1e-13 / V*: on the ONERA M6 571k, a cap of V 7.7e-9 where V* is 2.4e-7, and the
+// lens around it left out the optimum, 1.8e-8 higher).
 double link_vertex_lens_radius(const std::vector<Vec3>& dirs, const Vec3& centre, double thr, double max_radius);
 
 }  // namespace detail

@@ -151,5 +151,30 @@ TEST(MostNormal, TrailingEdgePeakBetweenNearlyAntipodalNeighboursIsReached) {
   EXPECT_GE(mn.normality, best.d - default_tolerances().normality_tie);
 }
 
+// A nearly flat vertex of the ONERA M6 571k (vertex 201104, V 1 - 5e-11): the cap of
+// its link vertices is held to V* = 2.4e-7, which Wolfe's certificate (slack 1e-13 on
+// x.x) accepted at 7.7e-9. The link-vertex lens was built around that cap's antipode,
+// which lies outside the region it is meant to bound, and the optimum, 1.8e-8 higher than
+// the answer, was left out of the search.
+TEST(MostNormal, NearlyFlatLinkIsNotSearchedInTheLensOfAnInaccurateCap) {
+  const Vec3 p{0.98574147239999999, 0.67976727719999996, 0.0019455837050000001};
+  const std::vector<Vec3> ring{{0.98411325329999999, 0.67672407180000005, 0.0020412762580000001},
+                               {0.98771427840000003, 0.67693856689999998, 0.0016030976660000001},
+                               {0.98915871070000005, 0.68000413479999999, 0.0015309166300000001},
+                               {0.98737929599999996, 0.68279547519999995, 0.001848179256},
+                               {0.98396866220000001, 0.68267501659999996, 0.0022660470270000001},
+                               {0.98232060139999999, 0.67967390510000003, 0.0023656582960000002}};
+  const FanGeometry g = build_fan_geometry(p, ring, true);
+  ASSERT_FALSE(g.any_degenerate);
+  const MostNormalResult mn = most_normal_normal(g);
+  const oracle::Link link = link_around(p, ring);
+  EXPECT_EQ(oracle::fluid(link, mn.normal), 1);
+  EXPECT_NEAR(mn.normality, oracle::normality(link, mn.normal), 1e-12);
+  const double v_min = 0.5 * most_visible_normal(g.face_normals).visibility;
+  const oracle::Best best = oracle::maximise(link, v_min, 200000, 7u);
+  EXPECT_GT(best.d, 0.5 * M_PI + 2.3e-7);  // the oracle does find the optimum
+  EXPECT_GE(mn.normality, best.d - default_tolerances().normality_tie);
+}
+
 }  // namespace
 }  // namespace blayer

@@ -248,6 +248,34 @@ TEST(LinkVertexLens, HoldsEverySampledDirectionOfItsRegion) {
   EXPECT_GT(checked, 100);
 }
 
+// The radius bounds the region only around a point of it: a centre outside, as a cap
+// antipode computed inaccurately for a nearly flat link can be, gets no radius, also
+// where the circles around it miss the region.
+TEST(LinkVertexLens, RefusesACentreOutsideItsRegion) {
+  std::mt19937 rng(17);
+  int refused = 0;
+  for (int t = 0; t < 100; ++t) {
+    const FanGeometry g = testing_fans::geometry(testing_fans::skin_fan(rng));
+    Tolerances cap_tol = default_tolerances();
+    cap_tol.min_visibility = 1e-12;
+    MostVisibleResult cap;
+    if (wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap) != WolfeOutcome::kCertified) continue;
+    const double target = M_PI - std::acos(std::min(1.0, cap.visibility));
+    if (target < 0.5 * M_PI + 1e-6) continue;
+    const double thr = 0.5 * M_PI + 0.5 * (target - 0.5 * M_PI);
+    // Beyond the region: 1.5 times the bound's excess from the antipode, towards a vertex.
+    Vec3 e1, e2;
+    detail::orthonormal_complement(-cap.normal, &e1, &e2);
+    const Vec3 away = normalized(-cap.normal + 0.3 * (std::cos(t) * e1 + std::sin(t) * e2));
+    double g_away = M_PI;
+    for (const Vec3& w : g.dirs) g_away = std::min(g_away, angle_between(away, w));
+    if (g_away >= thr) continue;
+    ++refused;
+    EXPECT_LT(detail::link_vertex_lens_radius(g.dirs, away, thr, 0.5), 0.0) << "fan " << t;
+  }
+  EXPECT_GT(refused, 30);
+}
+
 // The envelope sweep emits a point of largest V inside the window, as high as the best
 // of all single peaks and pairwise crossings there.
 // The bisector peak of two unit sites a, b (a + b in exact arithmetic): for nearly
