@@ -352,6 +352,103 @@ bool compact_soup_triangles_intersect(const std::vector<Vec3>& pts, const SoupTr
   return soup_pair_intersects(pts, s, t);
 }
 
+bool order_star_ring(std::int32_t v, const std::array<std::int32_t, 2>* triangles, int n,
+                     std::vector<std::int32_t>* ring, bool* closed) {
+  ring->clear();
+  if (n == 0) return false;
+  thread_local std::vector<std::array<std::int32_t, 2>> e;
+  thread_local std::vector<std::int32_t> ends;
+  e.assign(triangles, triangles + n);
+  ends.clear();
+  for (const auto& [a, b] : e)
+    if (a == v || b == v || a == b) return false;
+  std::sort(e.begin(), e.end());
+  for (int i = 0; i < n; ++i) {
+    if (i > 0 && e[i][0] == e[i - 1][0]) return false;  // two triangles after one point
+    ends.push_back(e[i][1]);
+  }
+  std::sort(ends.begin(), ends.end());
+  if (std::adjacent_find(ends.begin(), ends.end()) != ends.end()) return false;  // two before one point
+  // A path starts at the one point no triangle ends at; a cycle anywhere.
+  std::int32_t first = e[0][0];
+  for (const auto& ab : e)
+    if (!std::binary_search(ends.begin(), ends.end(), ab[0])) {
+      first = ab[0];
+      break;
+    }
+  auto next = [&](std::int32_t a) {
+    const auto it = std::lower_bound(e.begin(), e.end(), std::array<std::int32_t, 2>{a, INT32_MIN});
+    return it != e.end() && (*it)[0] == a ? (*it)[1] : -1;
+  };
+  ring->push_back(first);
+  for (int steps = 0; steps < n; ++steps) {
+    const std::int32_t p = next(ring->back());
+    if (p < 0) return false;  // the path ended before taking every triangle
+    if (p == first) {
+      *closed = true;
+      return steps == n - 1;  // a cycle through every triangle
+    }
+    ring->push_back(p);
+  }
+  *closed = false;
+  return true;  // n triangles from the path's first point: all of them
+}
+
+namespace {
+
+// Whether ring[0..m) names m distinct ids.
+bool distinct_ids(const std::int32_t* ring, int m) {
+  if (m <= 16) {
+    for (int i = 1; i < m; ++i)
+      for (int j = 0; j < i; ++j)
+        if (ring[i] == ring[j]) return false;
+    return true;
+  }
+  thread_local std::vector<std::int32_t> sorted;
+  sorted.assign(ring, ring + m);
+  std::sort(sorted.begin(), sorted.end());
+  return std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+}
+
+}  // namespace
+
+bool star_pairs_meet_only_at_centre(const std::vector<Vec3>& points, std::int32_t v, const std::int32_t* ring,
+                                    int m, bool closed) {
+  const int n = closed ? m : m - 1;  // the triangles: (ring[i], ring[i + 1]), wrapping when closed
+  if (n < 2) return true;
+  if (!distinct_ids(ring, m)) return false;
+  for (int i = 0; i < m; ++i)
+    if (ring[i] == v) return false;
+  const Vec3& c = points[v];
+  Vec3 area{0.0, 0.0, 0.0};
+  for (int t = 0; t < n; ++t) area += cross(points[ring[t]] - c, points[ring[(t + 1) % m]] - c);
+  // Any axis may be dropped: the rounded vector area only chooses one that likely
+  // leaves every triangle an area.
+  int drop = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(area[k]) > std::fabs(area[drop])) drop = k;
+  const int i = kNext[drop], j = kAfterNext[drop];
+  auto projected = [&](int r) { return Vec2{points[ring[r]][i], points[ring[r]][j]}; };
+  const Vec2 V{c[i], c[j]}, X = projected(0);
+  const int sign = orient2d_filter(V, X, projected(1));
+  if (sign == 0) return false;
+  // side: the orientation of (V, ring[t], X). Triangle t holds X's direction in its
+  // closed angle iff sign * side(t) >= 0 and sign * side(t + 1) <= 0.
+  Vec2 A = X;
+  int side_a = 0;
+  for (int t = 0; t < n; ++t) {
+    const int r = (t + 1) % m;
+    const Vec2 B = projected(r);
+    if (orient2d_filter(V, A, B) != sign) return false;
+    const int side_b = r == 0 ? 0 : orient2d_filter(V, B, X);
+    const bool at_first = t == 0 || r == 0;
+    if (!at_first && side_a != -sign && side_b != sign) return false;
+    A = B;
+    side_a = side_b;
+  }
+  return true;
+}
+
 std::vector<std::pair<int, int>> find_triangle_intersections(const std::vector<Vec3>& points,
                                                              const std::vector<IndexedTriangle>& triangles,
                                                              const std::vector<char>* check, std::size_t max_pairs) {

@@ -37,6 +37,33 @@ bool soup_triangles_intersect(const std::vector<Vec3>& points, const IndexedTria
 using SoupTriangle = std::array<std::int32_t, 3>;
 bool compact_soup_triangles_intersect(const std::vector<Vec3>& points, const SoupTriangle& s, const SoupTriangle& t);
 
+// The ring of a star: the triangles (v, a_i, b_i), each as its winding runs from v and
+// given in any order, as one path or one cycle of distinct points other than v:
+// *ring receives a_0, then each next point (b of the triangle whose a is the point
+// before), *closed whether the last point leads back to the first. False where the
+// triangles form no such ring (a point with two triangles on one side, two rings, a
+// triangle naming v or one point twice).
+bool order_star_ring(std::int32_t v, const std::array<std::int32_t, 2>* triangles, int n,
+                     std::vector<std::int32_t>* ring, bool* closed);
+
+// A certificate for the star of soup point v whose ring (as order_star_ring gives it)
+// is ring[0..m): true means that no two of its triangles that share only v (as ids)
+// meet anywhere else, so their pair tests may be skipped; false means "not certified",
+// never "they meet".
+// It holds when the ring's points are distinct and, in the projection that drops the
+// dominant axis of the star's vector area, every triangle has a non-zero area of one
+// sign (its angle at v is then convex and turns one way) and no triangle other than
+// those at ring[0] holds ring[0]'s direction in its closed angle at v. The angles then
+// turn through less than one full turn along a path (exactly one around a cycle: a
+// second turn would pass ring[0]'s direction inside another triangle's angle), so the
+// angles of two triangles that share only v have only v's projection in common, and
+// the triangles only v (a triangle whose projection has an area holds no other point
+// that projects onto v's). Decided by the floating-point filter of the exact
+// orientation; where it cannot decide, the star is not certified. About 2m
+// orientations, where the pair tests it replaces are O(m^2).
+bool star_pairs_meet_only_at_centre(const std::vector<Vec3>& points, std::int32_t v, const std::int32_t* ring,
+                                    int m, bool closed);
+
 // All pairs (i < j) of intersecting triangles per soup_triangles_intersect, found with a
 // TriangleBvh over the triangles' boxes, in increasing (i, j) order. If `check` is given
 // (one flag per triangle) only pairs with at least one flagged triangle are tested.
