@@ -238,6 +238,8 @@ FrontChecker::FrontChecker(const TriSurface& wall, std::shared_ptr<const ColumnL
                     "every element's columns are those of its front triangles");
   for (auto* v : {&bad_cell_, &invalid_, &elem_moved_}) v->assign(ne_, 0);
   for (auto* v : {&collided_, &tri_moved_, &tri_grows_, &query_}) v->assign(nt_, 0);
+  star_apart_.assign(nc_, 0);
+  if (check_collisions_) order_star_rings();
   wall_tris_.resize(nf_);
   cur_tris_.resize(nt_);
   new_tris_.resize(nt_);
@@ -495,6 +497,7 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   }
   query_listed_ = listed_;
   collided_list_.clear();
+  certify_stars(n_cur);
   // With the slabs: the trees skip the pairs whose slabs are apart (diagonal_slabs.h).
   // Only the triangles that moved since the layer's previous attempt (all in its first).
   auto corners = [&](int f, Vec3* c) {
@@ -518,6 +521,7 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   });
   auto new_pair = [&](int f, int j) {
     if (!tri_grows_[f] || !tri_grows_[j]) return;
+    if (shares_only_a_certified_centre(new_tris_[f], new_tris_[j], n_cur)) return;
     if (compact_soup_triangles_intersect(soup_, new_tris_[f], new_tris_[j])) {
       hit(f);
       hit(j);
@@ -535,6 +539,69 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
         collided_[f] = 1;
         collided_list_.push_back(f);
       }
+}
+
+void FrontChecker::order_star_rings() {
+  // Column c's ring fits in count(c) + 1 slots from start[c] + c: an open ring has one
+  // point more than its triangles.
+  star_ring_.assign(column_triangles_.items.size() + static_cast<std::size_t>(nc_), 0);
+  star_ring_size_.assign(nc_, 0);
+  star_closed_.assign(nc_, 0);
+  tbb::parallel_for(0, nc_, [&](int c) {
+    thread_local std::vector<std::array<std::int32_t, 2>> sides;
+    thread_local std::vector<std::int32_t> ring;
+    sides.clear();
+    for (const int* f = column_triangles_.begin(c); f != column_triangles_.end(c); ++f) {
+      const Triangle& t = front_[*f];
+      const int p = t[0] == c ? 0 : t[1] == c ? 1 : 2;
+      sides.push_back({t[(p + 1) % 3], t[(p + 2) % 3]});
+    }
+    bool closed = false;
+    // A column without a ring keeps size 0: its star is never certified.
+    if (!order_star_ring(c, sides.data(), static_cast<int>(sides.size()), &ring, &closed)) return;
+    std::copy(ring.begin(), ring.end(), star_ring_.begin() + column_triangles_.start[c] + c);
+    star_ring_size_[c] = static_cast<int>(ring.size());
+    star_closed_[c] = closed;
+  });
+}
+
+void FrontChecker::certify_star(int c, std::int64_t n_cur) {
+  star_apart_[c] = 0;
+  const int m = star_ring_size_[c];
+  if (!grows_[c] || m == 0) return;
+  thread_local std::vector<std::int32_t> ids;
+  ids.resize(m);
+  const int* ring = star_ring_.data() + column_triangles_.start[c] + c;
+  for (int i = 0; i < m; ++i) ids[i] = soup_id(grows_[ring[i]] ? n_cur + ring[i] : cur_id(ring[i]));
+  star_apart_[c] = star_pairs_meet_only_at_centre(soup_, soup_id(n_cur + c), ids.data(), m, star_closed_[c]);
+}
+
+void FrontChecker::certify_stars(std::int64_t n_cur) {
+  if (!listed_) {
+    tbb::parallel_for(0, nc_, [&](int c) { certify_star(c, n_cur); });
+    return;
+  }
+  // A repair attempt: the stars that hold a moved triangle (a column's growing state
+  // changes only where it moved, and so do its triangles).
+  star_list_.clear();
+  for (int f : tri_list_)
+    for (int c : front_[f]) star_list_.push_back(c);
+  std::sort(star_list_.begin(), star_list_.end());
+  star_list_.erase(std::unique(star_list_.begin(), star_list_.end()), star_list_.end());
+  for (int c : star_list_) certify_star(c, n_cur);
+}
+
+bool FrontChecker::shares_only_a_certified_centre(const SoupTriangle& s, const SoupTriangle& t,
+                                                  std::int64_t n_cur) const {
+  int n_shared = 0;
+  std::int64_t shared = -1;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (s[i] == t[j]) {
+        ++n_shared;
+        shared = s[i];
+      }
+  return n_shared == 1 && shared >= n_cur && star_apart_[shared - n_cur];
 }
 
 void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::vector<Vec3>& next,
@@ -653,7 +720,12 @@ void FrontChecker::release() {
   release(side_geo_);
   release(column_triangles_);
   release(tree_index_);
-  for (std::vector<int>* list : {&moved_list_, &tri_list_, &elem_list_, &query_list_, &collided_list_, &acc_list_})
+  release(star_apart_);
+  release(star_ring_);
+  release(star_ring_size_);
+  release(star_closed_);
+  for (std::vector<int>* list :
+       {&moved_list_, &tri_list_, &elem_list_, &query_list_, &collided_list_, &acc_list_, &star_list_})
     release(*list);
 }
 

@@ -13,7 +13,9 @@
 // already checked, so it is neither tested nor a partner; likewise a current triangle
 // that is still on the wall. A triangle that names one soup point twice (a fan strip
 // whose fan points are still on the wall) is a segment of its neighbours' edges and is
-// skipped. Cells are checked per layout element (layer_cells.h).
+// skipped. Cells are checked per layout element (layer_cells.h). Two new triangles that
+// share only a growing column's new top are not tested when that column's star is
+// certified (star_pairs_meet_only_at_centre): they then meet nowhere else.
 //
 // Incremental re-checks: within a layer, a cell or new triangle is re-tested in a
 // later attempt only if one of its columns moved or changed growing state, or if it
@@ -132,6 +134,17 @@ class FrontChecker {
   // the layer starts from (top, layers): the attempt that was committed.
   bool last_attempt_committed(int k, const std::vector<Vec3>& top, const std::vector<int>& layers) const;
   void check_intersections(const std::vector<Vec3>& next);
+  // The new front's stars (star_pairs_meet_only_at_centre) around the new points of the
+  // growing columns: all in a layer's first attempt, those holding a moved triangle in a
+  // repair attempt. n_cur: the first new point's soup id.
+  void certify_stars(std::int64_t n_cur);
+  // Each column's ring in the front (order_star_ring), once: the front's triangles do
+  // not change, only the soup ids of their corners.
+  void order_star_rings();
+  void certify_star(int c, std::int64_t n_cur);
+  // Whether new front triangles s and t share one soup point alone, the new point of a
+  // column whose star is certified: they then meet nowhere else, untested.
+  bool shares_only_a_certified_centre(const SoupTriangle& s, const SoupTriangle& t, std::int64_t n_cur) const;
   void build_edge_neighbours(const TriSurface& wall, const ColumnLayout& layout);
   // Whether the first nf_ front triangles are the wall's, corner by corner on bitwise
   // the same points (the layout's contract, checked rather than assumed: the first
@@ -211,6 +224,15 @@ class FrontChecker {
   TriangleBvh::LayoutIndex tree_index_;
   std::vector<char> bad_cell_, elem_moved_;                     // per element
   std::vector<char> collided_, tri_moved_, tri_grows_, query_;  // per front triangle
+  // Per column: its new front star is certified (certify_stars); the columns whose stars
+  // a repair attempt certifies again.
+  std::vector<char> star_apart_;
+  std::vector<int> star_list_;
+  // Per column: its ring of columns (star_ring_size_[c] of them in star_ring_ from
+  // column_triangles_.start[c] + c; none where the front has no ring there) and whether
+  // it closes.
+  std::vector<int> star_ring_, star_ring_size_;
+  std::vector<char> star_closed_;
   std::vector<char> side_bad_;  // a point of the new triangle off the model's side of the plane
   tbb::enumerable_thread_specific<std::vector<int>> crossing_;  // new front triangles found crossing
   std::vector<char> query_nodes_;                                   // new_tree_ nodes holding a queried triangle
