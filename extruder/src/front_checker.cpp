@@ -461,6 +461,21 @@ void FrontChecker::list_acceptance_triangles() {
   }
 }
 
+// Inline: as a call from the pair traversal's loop it made the perforated block's checks
+// without fans 19 % slower than with no certificate at all.
+inline bool FrontChecker::shares_only_a_certified_centre(const SoupTriangle& s, const SoupTriangle& t,
+                                                         std::int64_t n_cur) const {
+  int n_shared = 0;
+  std::int64_t shared = -1;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (s[i] == t[j]) {
+        ++n_shared;
+        shared = s[i];
+      }
+  return n_shared == 1 && shared >= n_cur && star_apart_[shared - n_cur];
+}
+
 void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
   const std::int64_t n_cur = static_cast<std::int64_t>(nv_) + nc_;
   auto new_id = [&](int c) -> std::int64_t { return grows_[c] ? n_cur + c : cur_id(c); };
@@ -589,19 +604,6 @@ void FrontChecker::certify_stars(std::int64_t n_cur) {
   std::sort(star_list_.begin(), star_list_.end());
   star_list_.erase(std::unique(star_list_.begin(), star_list_.end()), star_list_.end());
   for (int c : star_list_) certify_star(c, n_cur);
-}
-
-bool FrontChecker::shares_only_a_certified_centre(const SoupTriangle& s, const SoupTriangle& t,
-                                                  std::int64_t n_cur) const {
-  int n_shared = 0;
-  std::int64_t shared = -1;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (s[i] == t[j]) {
-        ++n_shared;
-        shared = s[i];
-      }
-  return n_shared == 1 && shared >= n_cur && star_apart_[shared - n_cur];
 }
 
 void FrontChecker::check(int attempt, const std::vector<Vec3>& top, const std::vector<Vec3>& next,
