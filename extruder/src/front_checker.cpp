@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <climits>
 #include <optional>
 
 #include "blayer/core/assert.h"
@@ -556,39 +557,50 @@ void FrontChecker::check_intersections(const std::vector<Vec3>& next) {
       }
 }
 
+std::array<int, 2> FrontChecker::ring_side(int c, const Triangle& t) {
+  const int p = t[0] == c ? 0 : t[1] == c ? 1 : 2;
+  return {t[(p + 1) % 3], t[(p + 2) % 3]};
+}
+
 void FrontChecker::order_star_rings() {
-  // Column c's ring fits in count(c) + 1 slots from start[c] + c: an open ring has one
-  // point more than its triangles.
-  star_ring_.assign(column_triangles_.items.size() + static_cast<std::size_t>(nc_), 0);
-  star_ring_size_.assign(nc_, 0);
-  star_closed_.assign(nc_, 0);
+  star_ring_.assign(nc_, StarRing::kNone);
   tbb::parallel_for(0, nc_, [&](int c) {
     thread_local std::vector<std::array<std::int32_t, 2>> sides;
     thread_local std::vector<std::int32_t> ring;
+    thread_local std::vector<std::pair<int, int>> by_first;  // (the side's first corner, the triangle)
     sides.clear();
+    by_first.clear();
     for (const int* f = column_triangles_.begin(c); f != column_triangles_.end(c); ++f) {
-      const Triangle& t = front_[*f];
-      const int p = t[0] == c ? 0 : t[1] == c ? 1 : 2;
-      sides.push_back({t[(p + 1) % 3], t[(p + 2) % 3]});
+      const std::array<int, 2> side = ring_side(c, front_[*f]);
+      sides.push_back({side[0], side[1]});
+      by_first.push_back({side[0], *f});
     }
     bool closed = false;
-    // A column without a ring keeps size 0: its star is never certified.
+    // A column without a ring keeps kNone: its star is never certified.
     if (!order_star_ring(c, sides.data(), static_cast<int>(sides.size()), &ring, &closed)) return;
-    std::copy(ring.begin(), ring.end(), star_ring_.begin() + column_triangles_.start[c] + c);
-    star_ring_size_[c] = static_cast<int>(ring.size());
-    star_closed_[c] = closed;
+    // Its triangles in ring order, in place: the table's other readers take them in any
+    // order. The ring's points are the triangles' first corners (and, when open, the last
+    // one's second).
+    std::sort(by_first.begin(), by_first.end());
+    int* out = column_triangles_.items.data() + column_triangles_.start[c];
+    for (std::size_t t = 0; t < by_first.size(); ++t)
+      out[t] = std::lower_bound(by_first.begin(), by_first.end(), std::pair<int, int>{ring[t], INT_MIN})->second;
+    star_ring_[c] = closed ? StarRing::kClosed : StarRing::kOpen;
   });
 }
 
 void FrontChecker::certify_star(int c, std::int64_t n_cur) {
   star_apart_[c] = 0;
-  const int m = star_ring_size_[c];
-  if (!grows_[c] || m == 0) return;
+  if (!grows_[c] || star_ring_[c] == StarRing::kNone) return;
+  auto soup_of = [&](int column) { return soup_id(grows_[column] ? n_cur + column : cur_id(column)); };
   thread_local std::vector<std::int32_t> ids;
-  ids.resize(m);
-  const int* ring = star_ring_.data() + column_triangles_.start[c] + c;
-  for (int i = 0; i < m; ++i) ids[i] = soup_id(grows_[ring[i]] ? n_cur + ring[i] : cur_id(ring[i]));
-  star_apart_[c] = star_pairs_meet_only_at_centre(soup_, soup_id(n_cur + c), ids.data(), m, star_closed_[c]);
+  ids.clear();
+  for (const int* f = column_triangles_.begin(c); f != column_triangles_.end(c); ++f)
+    ids.push_back(soup_of(ring_side(c, front_[*f])[0]));
+  const bool closed = star_ring_[c] == StarRing::kClosed;
+  if (!closed) ids.push_back(soup_of(ring_side(c, front_[*(column_triangles_.end(c) - 1)])[1]));
+  star_apart_[c] =
+      star_pairs_meet_only_at_centre(soup_, soup_id(n_cur + c), ids.data(), static_cast<int>(ids.size()), closed);
 }
 
 void FrontChecker::certify_stars(std::int64_t n_cur) {
@@ -724,8 +736,6 @@ void FrontChecker::release() {
   release(tree_index_);
   release(star_apart_);
   release(star_ring_);
-  release(star_ring_size_);
-  release(star_closed_);
   for (std::vector<int>* list :
        {&moved_list_, &tri_list_, &elem_list_, &query_list_, &collided_list_, &acc_list_, &star_list_})
     release(*list);

@@ -138,9 +138,12 @@ class FrontChecker {
   // growing columns: all in a layer's first attempt, those holding a moved triangle in a
   // repair attempt. n_cur: the first new point's soup id.
   void certify_stars(std::int64_t n_cur);
-  // Each column's ring in the front (order_star_ring), once: the front's triangles do
-  // not change, only the soup ids of their corners.
+  // Each column's ring in the front (order_star_ring), once, as the order of its
+  // triangles in column_triangles_: the front's triangles do not change, only the soup
+  // ids of their corners.
   void order_star_rings();
+  // The corners after column c in front triangle t, in its winding.
+  static std::array<int, 2> ring_side(int c, const Triangle& t);
   void certify_star(int c, std::int64_t n_cur);
   // Whether new front triangles s and t share one soup point alone, the new point of a
   // column whose star is certified: they then meet nowhere else, untested.
@@ -228,11 +231,10 @@ class FrontChecker {
   // a repair attempt certifies again.
   std::vector<char> star_apart_;
   std::vector<int> star_list_;
-  // Per column: its ring of columns (star_ring_size_[c] of them in star_ring_ from
-  // column_triangles_.start[c] + c; none where the front has no ring there) and whether
-  // it closes.
-  std::vector<int> star_ring_, star_ring_size_;
-  std::vector<char> star_closed_;
+  // Per column: whether its front triangles form a ring (order_star_ring), open or
+  // closed; column_triangles_ then lists them in ring order.
+  enum class StarRing : char { kNone, kOpen, kClosed };
+  std::vector<StarRing> star_ring_;
   std::vector<char> side_bad_;  // a point of the new triangle off the model's side of the plane
   tbb::enumerable_thread_specific<std::vector<int>> crossing_;  // new front triangles found crossing
   std::vector<char> query_nodes_;                                   // new_tree_ nodes holding a queried triangle
