@@ -422,28 +422,30 @@ bool star_pairs_meet_only_at_centre(const std::vector<Vec3>& points, std::int32_
   const Vec3& c = points[v];
   Vec3 area{0.0, 0.0, 0.0};
   for (int t = 0; t < n; ++t) area += cross(points[ring[t]] - c, points[ring[(t + 1) % m]] - c);
-  // Any axis may be dropped: the rounded vector area only chooses one that likely
-  // leaves every triangle an area.
-  int drop = 0;
-  for (int k = 1; k < 3; ++k)
-    if (std::fabs(area[k]) > std::fabs(area[drop])) drop = k;
-  const int i = kNext[drop], j = kAfterNext[drop];
-  auto projected = [&](int r) { return Vec2{points[ring[r]][i], points[ring[r]][j]}; };
-  const Vec2 V{c[i], c[j]}, X = projected(0);
-  const int sign = orient2d_filter(V, X, projected(1));
+  // The projection runs along e = q - c, exact whatever q is: the orientation of the
+  // projected (c, a, b) is the sign of det[a - c, b - c, e], i.e. orient3d(c, a, b, q).
+  // The rounded vector area, scaled to the ring's size, only chooses a direction that
+  // likely leaves every triangle an area (an axis would not: a CAD edge's two faces at 90
+  // degrees, one of them parallel to the axis nearest their mean).
+  const double area_norm = norm(area), reach = norm(points[ring[0]] - c);
+  if (!(area_norm > 0.0) || !(reach > 0.0) || !std::isfinite(area_norm + reach)) return false;
+  const Vec3 q = c + (reach / area_norm) * area;
+  auto orientation = [&](const Vec3& a, const Vec3& b) { return detail::orient3d_filter(c, a, b, q); };
+  const Vec3& x = points[ring[0]];
+  const int sign = orientation(x, points[ring[1]]);
   if (sign == 0) return false;
-  // side: the orientation of (V, ring[t], X). Triangle t holds X's direction in its
+  // side: the orientation of (c, ring[t], x). Triangle t holds x's direction in its
   // closed angle iff sign * side(t) >= 0 and sign * side(t + 1) <= 0.
-  Vec2 A = X;
+  const Vec3* a = &x;
   int side_a = 0;
   for (int t = 0; t < n; ++t) {
     const int r = (t + 1) % m;
-    const Vec2 B = projected(r);
-    if (orient2d_filter(V, A, B) != sign) return false;
-    const int side_b = r == 0 ? 0 : orient2d_filter(V, B, X);
+    const Vec3& b = points[ring[r]];
+    if (orientation(*a, b) != sign) return false;
+    const int side_b = r == 0 ? 0 : orientation(b, x);
     const bool at_first = t == 0 || r == 0;
     if (!at_first && side_a != -sign && side_b != sign) return false;
-    A = B;
+    a = &b;
     side_a = side_b;
   }
   return true;

@@ -186,6 +186,18 @@ TEST(StarCertificate, AFlatFanOnceAroundIsCertifiedAndTwiceAroundIsNot) {
   }
 }
 
+// A point on a CAD part's edge: four triangles on the top face (normal +z), four on the
+// side face (+x). No axis sees both faces with an area, the direction between them does.
+TEST(StarCertificate, AStarAcrossARightAngledEdgeIsCertified) {
+  Star s;
+  s.closed = true;
+  s.points = {{0, 0, 0},  {0, 1, 0},  {-1, 1, 0}, {-1, 0, 0},  {-1, -1, 0},
+              {0, -1, 0}, {0, -1, -1}, {0, 0, -1}, {0, 1, -1}};
+  for (int i = 1; i < 9; ++i) s.ring.push_back(i);
+  EXPECT_TRUE(star_pairs_meet_only_at_centre(s.points, 0, s.ring.data(), 8, true));
+  EXPECT_EQ(meeting_pairs(s), 0);
+}
+
 TEST(StarCertificate, RefusesRepeatedRingIdsAndAFlatTriangle) {
   std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {1, 0, 0}};
   const std::vector<std::int32_t> repeated{1, 2, 3, 4, 1};

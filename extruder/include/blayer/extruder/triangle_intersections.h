@@ -50,9 +50,9 @@ bool order_star_ring(std::int32_t v, const std::array<std::int32_t, 2>* triangle
 // is ring[0..m): true means that no two of its triangles that share only v (as ids)
 // meet anywhere else, so their pair tests may be skipped; false means "not certified",
 // never "they meet".
-// It holds when the ring's points are distinct and, in the projection that drops the
-// dominant axis of the star's vector area, every triangle has a non-zero area of one
-// sign (its angle at v is then convex and turns one way) and no triangle other than
+// It holds when the ring's points are distinct and, in the projection along a direction
+// near the star's vector area (exactly along q - v for a point q rounded from it), every
+// triangle has a non-zero area of one sign (its angle at v is then convex and turns one way) and no triangle other than
 // those at ring[0] holds ring[0]'s direction in its closed angle at v. The angles then
 // turn through less than one full turn along a path (exactly one around a cycle: a
 // second turn would pass ring[0]'s direction inside another triangle's angle), so the
