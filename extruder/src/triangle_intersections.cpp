@@ -394,31 +394,12 @@ bool order_star_ring(std::int32_t v, const std::array<std::int32_t, 2>* triangle
   return true;  // n triangles from the path's first point: all of them
 }
 
-namespace {
-
-// Whether ring[0..m) names m distinct ids.
-bool distinct_ids(const std::int32_t* ring, int m) {
-  if (m <= 16) {
-    for (int i = 1; i < m; ++i)
-      for (int j = 0; j < i; ++j)
-        if (ring[i] == ring[j]) return false;
-    return true;
-  }
-  thread_local std::vector<std::int32_t> sorted;
-  sorted.assign(ring, ring + m);
-  std::sort(sorted.begin(), sorted.end());
-  return std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
-}
-
-}  // namespace
-
 bool star_pairs_meet_only_at_centre(const std::vector<Vec3>& points, std::int32_t v, const std::int32_t* ring,
                                     int m, bool closed) {
   const int n = closed ? m : m - 1;  // the triangles: (ring[i], ring[i + 1]), wrapping when closed
   if (n < 2) return true;
-  if (!distinct_ids(ring, m)) return false;
-  for (int i = 0; i < m; ++i)
-    if (ring[i] == v) return false;
+  // A point named twice, or v in the ring, needs no test of its own: the second time
+  // the ring reaches a direction it has turned a full turn, and v gives a zero area.
   const Vec3& c = points[v];
   Vec3 area{0.0, 0.0, 0.0};
   for (int t = 0; t < n; ++t) area += cross(points[ring[t]] - c, points[ring[(t + 1) % m]] - c);

@@ -61,6 +61,9 @@ TEST(StarRing, RefusesStarsThatAreNotOneRing) {
   EXPECT_FALSE(order_star_ring(0, branch.data(), 2, &ring, &closed));
   const std::vector<Side> merge{{1, 3}, {2, 3}};
   EXPECT_FALSE(order_star_ring(0, merge.data(), 2, &ring, &closed));
+  // A path running into a cycle: every triangle is reached, but point 2 twice.
+  const std::vector<Side> into_a_cycle{{1, 2}, {2, 3}, {3, 2}};
+  EXPECT_FALSE(order_star_ring(0, into_a_cycle.data(), 3, &ring, &closed));
   const std::vector<Side> names_centre{{1, 2}, {2, 0}};
   EXPECT_FALSE(order_star_ring(0, names_centre.data(), 2, &ring, &closed));
   const std::vector<Side> names_a_point_twice{{1, 2}, {2, 2}};
@@ -198,10 +201,15 @@ TEST(StarCertificate, AStarAcrossARightAngledEdgeIsCertified) {
   EXPECT_EQ(meeting_pairs(s), 0);
 }
 
+// The ring's own geometry refuses a repeated point and a triangle of no area.
 TEST(StarCertificate, RefusesRepeatedRingIdsAndAFlatTriangle) {
   std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {1, 0, 0}};
   const std::vector<std::int32_t> repeated{1, 2, 3, 4, 1};
   EXPECT_FALSE(star_pairs_meet_only_at_centre(p, 0, repeated.data(), 5, false));
+  const std::vector<std::int32_t> inner_repeat{1, 2, 3, 4, 5, 2};  // 5 is 1's place again
+  EXPECT_FALSE(star_pairs_meet_only_at_centre(p, 0, inner_repeat.data(), 6, false));
+  const std::vector<std::int32_t> names_centre{1, 2, 0, 4};
+  EXPECT_FALSE(star_pairs_meet_only_at_centre(p, 0, names_centre.data(), 4, true));
   const std::vector<std::int32_t> once{1, 2, 3, 4};
   EXPECT_TRUE(star_pairs_meet_only_at_centre(p, 0, once.data(), 4, true));
   p[3] = {0, 2, 0};  // (v, ring[1], ring[2]) collinear with v: no area

@@ -50,16 +50,17 @@ bool order_star_ring(std::int32_t v, const std::array<std::int32_t, 2>* triangle
 // is ring[0..m): true means that no two of its triangles that share only v (as ids)
 // meet anywhere else, so their pair tests may be skipped; false means "not certified",
 // never "they meet".
-// It holds when the ring's points are distinct and, in the projection along a direction
-// near the star's vector area (exactly along q - v for a point q rounded from it), every
-// triangle has a non-zero area of one sign (its angle at v is then convex and turns one way) and no triangle other than
+// It holds when, in the projection along a direction near the star's vector area
+// (exactly along q - v for a point q rounded from it), every triangle has a non-zero
+// area of one sign (its angle at v is then convex and turns one way) and no triangle other than
 // those at ring[0] holds ring[0]'s direction in its closed angle at v. The angles then
 // turn through less than one full turn along a path (exactly one around a cycle: a
 // second turn would pass ring[0]'s direction inside another triangle's angle), so the
 // angles of two triangles that share only v have only v's projection in common, and
 // the triangles only v (a triangle whose projection has an area holds no other point
 // that projects onto v's). Decided by the floating-point filter of the exact
-// orientation; where it cannot decide, the star is not certified. About 2m
+// orientation; where it cannot decide, the star is not certified. A ring that names a
+// point twice fails these conditions (its second visit is a full turn on). About 2m
 // orientations, where the pair tests it replaces are O(m^2).
 bool star_pairs_meet_only_at_centre(const std::vector<Vec3>& points, std::int32_t v, const std::int32_t* ring,
                                     int m, bool closed);
