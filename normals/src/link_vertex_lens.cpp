@@ -59,12 +59,13 @@ bool circle_outside_lens(const std::vector<Vec3>& dirs, const Vec3& centre, cons
 double link_vertex_lens_radius(const std::vector<Vec3>& dirs, const Vec3& centre, double thr, double max_radius) {
   // The circle test bounds L only around a point of L: checked, not assumed, since the
   // centre is a computed cap antipode (see the header).
-  const double inside = std::cos(thr) - kOutsideMargin;
+  const double cos_thr = std::cos(thr);
+  const double inside = cos_thr - kOutsideMargin;
   for (const Vec3& u : dirs)
     if (!(dot(centre, u) <= inside)) return -1.0;
   Vec3 e1, e2;
   orthonormal_complement(centre, &e1, &e2);
-  const double lambda = std::cos(thr) + kOutsideMargin;
+  const double lambda = cos_thr + kOutsideMargin;
   thread_local std::vector<Vec3> near;
   for (double r = 1e-7; r <= max_radius; r *= 4.0) {
     // Vertices farther than thr + r from the centre cannot cover a point of the circle.
