@@ -94,6 +94,24 @@ TEST(AtomicOutputs, FailedCommitLeavesOnlyTheBlockingDirectory) {
   EXPECT_EQ(dir.entries(), 1);  // the directory only
 }
 
+// An existing file is moved aside before its replacement is renamed in (atomic_file.cpp
+// says why). A target that is a symbolic link is replaced as rename() alone replaces
+// it: the link gives way to the new file and the file it pointed to keeps its content.
+TEST(AtomicOutputs, ATargetLinkIsReplacedAndItsFileKept) {
+  TempDir dir;
+  dir.write("elsewhere.vtu", "not ours");
+  std::filesystem::create_symlink(dir.file("elsewhere.vtu"), dir.file("mesh.vtu"));
+  {
+    AtomicOutputs out;
+    write_text_file(out.stage(dir.file("mesh.vtu")), "new", dir.file("mesh.vtu"));
+    out.commit();
+  }
+  EXPECT_FALSE(std::filesystem::is_symlink(dir.file("mesh.vtu")));
+  EXPECT_EQ(slurp(dir.file("mesh.vtu")), "new");
+  EXPECT_EQ(slurp(dir.file("elsewhere.vtu")), "not ours");
+  EXPECT_EQ(dir.entries(), 2) << "a temporary or the moved-aside link was left behind";
+}
+
 TEST(AtomicOutputs, WritingIntoAMissingPlaceIsAnIoErrorNamingTheTarget) {
   TempDir dir;
   try {
