@@ -74,21 +74,32 @@ HugePageSetup current_huge_page_setup(int argc, char** argv) {
   return s;
 }
 
-void reexecute_on_huge_pages(int argc, char** argv) {
+bool set_huge_page_environment(int argc, char** argv) {
   const std::optional<std::string> tunables = huge_page_tunables(current_huge_page_setup(argc, argv));
-  if (!tunables) return;
-  // The re-executed process finds the setting and stays: one exec at most, whatever the
-  // C library does with GLIBC_TUNABLES.
+  if (!tunables) return false;
+  // The executed process finds the setting and stays: one exec at most, whatever the C
+  // library does with GLIBC_TUNABLES.
   const std::optional<std::string> before = variable("GLIBC_TUNABLES");
-  if (::setenv(kSettingVariable, "1", 1) == 0 && ::setenv("GLIBC_TUNABLES", tunables->c_str(), 1) == 0)
-    ::execv("/proc/self/exe", argv);
-  // No /proc, or the binary is gone: this process runs on, with 4 KiB pages, and its
-  // environment says so again (the summary reads it).
+  if (::setenv(kSettingVariable, "1", 1) == 0 && ::setenv("GLIBC_TUNABLES", tunables->c_str(), 1) == 0) return true;
+  restore_huge_page_environment(before);
+  return false;
+}
+
+void restore_huge_page_environment(const std::optional<std::string>& tunables) {
   ::unsetenv(kSettingVariable);
-  if (before)
-    ::setenv("GLIBC_TUNABLES", before->c_str(), 1);
+  if (tunables)
+    ::setenv("GLIBC_TUNABLES", tunables->c_str(), 1);
   else
     ::unsetenv("GLIBC_TUNABLES");
+}
+
+void reexecute_on_huge_pages(int argc, char** argv) {
+  const std::optional<std::string> before = variable("GLIBC_TUNABLES");
+  if (!set_huge_page_environment(argc, argv)) return;
+  ::execv("/proc/self/exe", argv);
+  // No /proc, or the binary is gone: this process runs on, with 4 KiB pages, and its
+  // environment says so again (the summary reads it).
+  restore_huge_page_environment(before);
 }
 
 }  // namespace blayer

@@ -4,8 +4,11 @@
 // advises the kernel to back its large chunks with 2 MiB pages when the tunable
 // glibc.malloc.hugetlb=1 is set (glibc 2.35 and later, with the kernel's THP mode
 // "madvise"), but glibc reads its tunables only when a process
-// starts: the command line re-executes itself once, at its start, with the tunable
-// added. BLAYER_HUGE_PAGES=0 turns this off; the re-executed process finds it set to 1.
+// starts: the process that runs the command line is executed with the tunable added,
+// by the `blayer` launcher (launcher.cpp), which loads none of the command line's
+// libraries (VTK's alone took 18 ms to load, a second time when the command line
+// re-executed itself). BLAYER_HUGE_PAGES=0 turns this off; the executed process finds it
+// set to 1.
 #pragma once
 
 #include <optional>
@@ -42,9 +45,18 @@ std::string huge_page_state(const HugePageSetup& s);
 
 HugePageSetup current_huge_page_setup(int argc, char** argv);
 
+// Adds the tunable to this process's environment, for the process it executes next, when
+// huge_page_tunables says so (with BLAYER_HUGE_PAGES=1, so that the executed process
+// stays); returns whether it did.
+bool set_huge_page_environment(int argc, char** argv);
+// Undoes set_huge_page_environment, given the GLIBC_TUNABLES it found (nullopt: unset).
+void restore_huge_page_environment(const std::optional<std::string>& tunables);
+
 // Re-executes the running binary (/proc/self/exe) with argv and the tunable when
 // huge_page_tunables says so. Returns when it does not, or when exec fails: the run then
-// goes on as it is.
+// goes on as it is. The `blayer` launcher (launcher.cpp) sets the tunable before it
+// executes the command line, which then finds BLAYER_HUGE_PAGES=1 and stays; run
+// directly, the command line re-executes itself.
 void reexecute_on_huge_pages(int argc, char** argv);
 
 }  // namespace blayer

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cstdlib>
+#include <filesystem>
 
 #include "../io/temp_dir.h"
 #include "run_cli.h"
@@ -121,6 +124,27 @@ TEST(HugePages, ReexecutedExtrusionWritesTheSameMeshAndSaysItsPages) {
   const std::string a = testing::slurp(dir.file("off.vtu")), b = testing::slurp(dir.file("run.vtu"));
   EXPECT_GT(a.size(), 1000u);
   EXPECT_TRUE(a == b) << "the meshes differ: " << a.size() << " and " << b.size() << " bytes";
+}
+
+// The launcher (launcher.cpp) finds the command line next to the file it is, through
+// symbolic links: a link to it elsewhere runs the command line.
+TEST(HugePages, ALinkToTheLauncherRunsTheCommandLine) {
+  TempDir dir;
+  std::filesystem::create_symlink(BLAYER_EXE, dir.file("blayer"));
+  const std::string cmd = dir.file("blayer") + " params >" + dir.file("out.txt") + " 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << testing::slurp(dir.file("out.txt"));
+  EXPECT_NE(testing::slurp(dir.file("out.txt")).find("first-height"), std::string::npos);
+}
+
+TEST(HugePages, ALauncherWithoutItsCommandLineSaysWhatIsMissing) {
+  TempDir dir;
+  std::filesystem::copy_file(BLAYER_EXE, dir.file("blayer"));
+  const std::string cmd = dir.file("blayer") + " params >" + dir.file("out.txt") + " 2>&1";
+  const int raw = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(raw));
+  EXPECT_EQ(WEXITSTATUS(raw), 1);
+  const std::string out = testing::slurp(dir.file("out.txt"));
+  EXPECT_NE(out.find("error: cannot run the command line " + dir.file("blayer-cli")), std::string::npos) << out;
 }
 
 }  // namespace
