@@ -1,5 +1,6 @@
 #include "blayer/extruder/layer_assembly.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -68,20 +69,33 @@ void LayerAssembler::commit_layer(int k, const std::vector<char>& grows, const s
                                   const StepDirections& d, ColumnState* columns) {
   const int nv = columns->size();
   std::vector<std::int64_t> new_top(nv, -1);
-  int n_grown = 0;
-  for (int v = 0; v < nv; ++v) {
-    if (!grows[v]) continue;
-    new_top[v] = static_cast<std::int64_t>(mesh_.points.size());
-    mesh_.points.push_back(next[v]);
-    // A fan point's wall point shows its first column's direction.
-    if (columns->layers[v] > 0 || point_column_[columns->top_id[v]] == v) set_point_normal(columns->top_id[v], d.n[v]);
-    for (int i = 0; i < 3; ++i) point_normal_.push_back(static_cast<float>(d.n[v][i]));
-    point_column_.push_back(v);
-    min_visibility_ = std::min(min_visibility_, d.visibility[v]);
-    ++n_grown;
-  }
-  columns_per_layer_.push_back(n_grown);
-  require_indexable_points(mesh_.points.size(), "layer " + std::to_string(k + 1));
+  const std::size_t first = mesh_.points.size();
+  std::size_t n_points = first;
+  for (int v = 0; v < nv; ++v)
+    if (grows[v]) {
+      new_top[v] = static_cast<std::int64_t>(n_points++);
+      min_visibility_ = std::min(min_visibility_, d.visibility[v]);
+    }
+  columns_per_layer_.push_back(static_cast<int>(n_points - first));
+  require_indexable_points(n_points, "layer " + std::to_string(k + 1));
+  // The new points side by side (serially they took 32 ms of the perforated block's
+  // run): each column writes its own point, and its top's normal, which no other
+  // growing column shares (a fan's wall point is written by its first column only).
+  mesh_.points.resize(n_points);
+  point_normal_.resize(3 * n_points);
+  point_column_.resize(n_points);
+  tbb::parallel_for(tbb::blocked_range<int>(0, nv, 1024), [&](const tbb::blocked_range<int>& r) {
+    for (int v = r.begin(); v < r.end(); ++v) {
+      if (!grows[v]) continue;
+      const std::size_t p = static_cast<std::size_t>(new_top[v]);
+      mesh_.points[p] = next[v];
+      // A fan point's wall point shows its first column's direction.
+      if (columns->layers[v] > 0 || point_column_[columns->top_id[v]] == v)
+        set_point_normal(columns->top_id[v], d.n[v]);
+      set_point_normal(static_cast<std::int64_t>(p), d.n[v]);
+      point_column_[p] = v;
+    }
+  });
   append_layer_cells(k, grows, columns->top_id, new_top);
   for (int v = 0; v < nv; ++v) {
     if (!grows[v]) continue;
@@ -132,16 +146,30 @@ void LayerAssembler::append_layer_cells(int k, const std::vector<char>& grows, c
         if (i_e >= n_wall_elements_) out.n_fan += n_cells;
       }
     });
+    // Then appended in order, each block at its place (appended one by one, the cells took
+    // 32 ms of the perforated block's run on one core).
+    std::size_t cells[kBlocksPerWave + 1], ids[kBlocksPerWave + 1];
+    cells[0] = mesh_.cell_types.size();
+    ids[0] = mesh_.connectivity.size();
     for (std::size_t b = 0; b < n_blocks; ++b) {
-      const CellBlock& block = blocks[b];
-      const PointId* ids = block.ids.data();
-      for (const CellType t : block.types) {
-        mesh_.add_cell(t, ids);
-        ids += corner_count(t);
-      }
-      cell_layer_.insert(cell_layer_.end(), block.types.size(), static_cast<std::uint16_t>(k));
-      fan_cells_ += block.n_fan;
+      cells[b + 1] = cells[b] + blocks[b].types.size();
+      ids[b + 1] = ids[b] + blocks[b].ids.size();
+      fan_cells_ += blocks[b].n_fan;
     }
+    mesh_.cell_types.resize(cells[n_blocks]);
+    mesh_.connectivity.resize(ids[n_blocks]);
+    mesh_.offsets.resize(cells[n_blocks] + 1);
+    cell_layer_.resize(cells[n_blocks], static_cast<std::uint16_t>(k));
+    tbb::parallel_for(std::size_t{0}, n_blocks, [&](std::size_t b) {
+      const CellBlock& block = blocks[b];
+      std::copy(block.types.begin(), block.types.end(), mesh_.cell_types.begin() + cells[b]);
+      std::copy(block.ids.begin(), block.ids.end(), mesh_.connectivity.begin() + ids[b]);
+      std::int64_t end = static_cast<std::int64_t>(ids[b]);
+      for (std::size_t c = 0; c < block.types.size(); ++c) {
+        end += corner_count(block.types[c]);
+        mesh_.offsets[cells[b] + c + 1] = end;
+      }
+    });
   }
 }
 

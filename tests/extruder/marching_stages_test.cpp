@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
 
 #include "blayer/extruder/column_heights.h"
@@ -649,7 +650,9 @@ TEST(LayerAssembly, CellsOfAFrontOfManyElementsFollowTheElementOrder) {
   const TriSurface wall = flat_grid(140);
   const WallTopology topo = build_wall_topology(wall);
   const ExtrusionParams p = test::growth_params(3, 0.1, 1.0);
-  const StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  StepDirections d = compute_step_directions(wall, topo, topo.used, p);
+  // Every column a direction of its own, so that the normals show whose they are.
+  for (std::size_t v = 0; v < d.n.size(); ++v) d.n[v] = normalized(Vec3{0.01 * (v % 7), 0.01 * (v % 5), 1.0});
   const ColumnLayout layout = single_column_layout(wall);
   ColumnState c = ColumnState::on_wall(wall.points, topo.used);
   LayerAssembler a(wall, d);
@@ -659,12 +662,19 @@ TEST(LayerAssembly, CellsOfAFrontOfManyElementsFollowTheElementOrder) {
   std::vector<std::int64_t> ids, offsets{0};
   std::vector<double> layer;
   std::int64_t n_points = static_cast<std::int64_t>(wall.points.size());
+  std::vector<Vec3> points = wall.points;
+  std::vector<int> point_column(wall.points.size());
+  std::iota(point_column.begin(), point_column.end(), 0);
   for (int k = 0; k < 3; ++k) {
     // Columns stop at random, a fifth of those still growing per layer.
     for (char& g : grows) g = g && rng() % 5 != 0;
     std::vector<std::int64_t> new_top(grows.size(), -1);
     for (std::size_t v = 0; v < grows.size(); ++v)
-      if (grows[v]) new_top[v] = n_points++;
+      if (grows[v]) {
+        new_top[v] = n_points++;
+        points.push_back(c.top[v] + Vec3{0.0, 0.0, 0.1});
+        point_column.push_back(static_cast<int>(v));
+      }
     for (const LayerElement& e : layout.elements) {
       LayerCell cells[2];
       const int n = element_layer_cells(
@@ -689,6 +699,14 @@ TEST(LayerAssembly, CellsOfAFrontOfManyElementsFollowTheElementOrder) {
   ASSERT_EQ(m.connectivity.size(), ids.size());
   EXPECT_TRUE(std::equal(ids.begin(), ids.end(), m.connectivity.begin()));
   EXPECT_EQ(static_cast<std::int64_t>(m.points.size()), n_points);
+  EXPECT_TRUE(m.points == points);
+  EXPECT_EQ(a.point_column(), point_column);
+  const DataArray* normal = m.find_point_array("normal");
+  ASSERT_NE(normal, nullptr);
+  ASSERT_EQ(normal->values.size(), 3 * points.size());
+  for (std::size_t q = 0; q < points.size(); ++q)
+    for (int i = 0; i < 3; ++i)
+      ASSERT_EQ(normal->values[3 * q + i], static_cast<float>(d.n[point_column[q]][i])) << q;
   const DataArray* cell_layer = m.find_cell_array("layer");
   ASSERT_NE(cell_layer, nullptr);
   ASSERT_EQ(cell_layer->values.size(), layer.size());
