@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -11,6 +12,13 @@
 namespace blayer::detail {
 
 PolygonSoup parse_stl(std::string_view bytes, const std::string& name);
+// An ASCII STL of 2 MiB or more read in pieces side by side (stl_reader.cpp), or
+// nothing where a piece meets anything but well-formed facets and solids: parse_stl then
+// reads it with the serial parser, which gives its messages.
+std::optional<PolygonSoup> parse_ascii_stl_in_pieces(std::string_view text);
+// An ASCII STL read by the serial parser alone: what parse_stl gives, read in pieces or
+// not (the tests' oracle).
+PolygonSoup parse_ascii_stl_serially(std::string_view bytes, const std::string& name);
 PolygonSoup parse_obj(std::string_view bytes, const std::string& name);
 PolygonSoup parse_off(std::string_view bytes, const std::string& name);
 PolygonSoup parse_ply(std::string_view bytes, const std::string& name);
