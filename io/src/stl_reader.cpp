@@ -280,7 +280,12 @@ std::optional<PolygonSoup> parse_ascii_stl_in_pieces(std::string_view text) {
     if (at > start.back() && at < text.size()) start.push_back(at);
   }
   start.push_back(text.size());
+  // Each piece's facets reserved here, for as many as its bytes could hold (a facet
+  // takes 70 bytes or more): made by the threads, the buffers grew in their own malloc
+  // arenas, which kept them resident after the read and lifted the M6 571k's peak from
+  // 1.00 to 1.06 GB. Reserved here, they are mappings of their own, returned when freed.
   std::vector<StlPiece> pieces(start.size() - 1);
+  for (std::size_t i = 0; i < pieces.size(); ++i) pieces[i].facets.reserve((start[i + 1] - start[i]) / 70 + 1);
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
     pieces[i] = parse_stl_piece(text.substr(start[i], start[i + 1] - start[i]), i == 0);
   });
