@@ -32,8 +32,9 @@ struct HugePageSetup {
 // the word in brackets, or "" when there is none.
 std::string thp_mode_of(const std::string& mode_file);
 
-// The GLIBC_TUNABLES value to re-execute with, or nothing when the process stays as it
-// is: off (BLAYER_HUGE_PAGES set), a command that builds or reads no mesh, another
+// The GLIBC_TUNABLES value to re-execute with: the user's tunables, then
+// glibc.malloc.hugetlb=1 and, unless the user chose it, glibc.malloc.arena_max=1 (one
+// malloc arena: huge_pages.cpp says why). Or nothing when the process stays as it is: off (BLAYER_HUGE_PAGES set), a command that builds or reads no mesh, another
 // malloc, a glibc without the tunable, a THP mode where advice changes nothing ("always"
 // gives every large mapping huge pages already, "never" none), or a GLIBC_TUNABLES that
 // chooses the tunable itself.

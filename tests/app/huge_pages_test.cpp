@@ -35,11 +35,14 @@ TEST(HugePages, ThpModeIsTheBracketedWord) {
   EXPECT_EQ(thp_mode_of("[madvise"), "");
 }
 
-TEST(HugePages, ReexecutesWithTheTunableAddedToTheUsersOnes) {
+TEST(HugePages, ReexecutesWithTheTunablesAddedToTheUsersOnes) {
   HugePageSetup s = debian_extrude();
-  EXPECT_EQ(huge_page_tunables(s), "glibc.malloc.hugetlb=1");
+  EXPECT_EQ(huge_page_tunables(s), "glibc.malloc.hugetlb=1:glibc.malloc.arena_max=1");
   s.tunables = "";
-  EXPECT_EQ(huge_page_tunables(s), "glibc.malloc.hugetlb=1");
+  EXPECT_EQ(huge_page_tunables(s), "glibc.malloc.hugetlb=1:glibc.malloc.arena_max=1");
+  s.tunables = "glibc.malloc.tcache_count=0";
+  EXPECT_EQ(huge_page_tunables(s), "glibc.malloc.tcache_count=0:glibc.malloc.hugetlb=1:glibc.malloc.arena_max=1");
+  // The user's own arena count stays.
   s.tunables = "glibc.malloc.arena_max=2";
   EXPECT_EQ(huge_page_tunables(s), "glibc.malloc.arena_max=2:glibc.malloc.hugetlb=1");
   for (const char* command : {"normals", "check"}) {
