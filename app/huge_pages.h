@@ -32,12 +32,13 @@ struct HugePageSetup {
 // the word in brackets, or "" when there is none.
 std::string thp_mode_of(const std::string& mode_file);
 
-// The GLIBC_TUNABLES value to re-execute with: the user's tunables, then
+// The GLIBC_TUNABLES value to execute the command line with: the user's tunables, then
 // glibc.malloc.hugetlb=1 and, unless the user chose it, glibc.malloc.arena_max=1 (one
-// malloc arena: huge_pages.cpp says why). Or nothing when the process stays as it is: off (BLAYER_HUGE_PAGES set), a command that builds or reads no mesh, another
-// malloc, a glibc without the tunable, a THP mode where advice changes nothing ("always"
-// gives every large mapping huge pages already, "never" none), or a GLIBC_TUNABLES that
-// chooses the tunable itself.
+// malloc arena: huge_pages.cpp says why). Or nothing when the process stays as it is:
+// off (BLAYER_HUGE_PAGES set), a command that builds or reads no mesh, another malloc,
+// a glibc without the tunable, a THP mode where advice changes nothing ("always" gives
+// every large mapping huge pages already, "never" none), or a GLIBC_TUNABLES that
+// chooses the huge-page tunable itself.
 std::optional<std::string> huge_page_tunables(const HugePageSetup& s);
 
 // Whether the running process's large arrays get huge pages, for the summary: "on",
@@ -46,7 +47,7 @@ std::string huge_page_state(const HugePageSetup& s);
 
 HugePageSetup current_huge_page_setup(int argc, char** argv);
 
-// Adds the tunable to this process's environment, for the process it executes next, when
+// Adds the tunables to this process's environment, for the process it executes next, when
 // huge_page_tunables says so (with BLAYER_HUGE_PAGES=1, so that the executed process
 // stays); returns whether it did.
 bool set_huge_page_environment(int argc, char** argv);
