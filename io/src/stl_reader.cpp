@@ -225,8 +225,8 @@ std::size_t next_facet_line(std::string_view text, std::size_t from) {
   return text.size();
 }
 
-StlPiece parse_stl_piece(std::string_view text, bool first) {
-  StlPiece piece;
+// Reads a piece into *piece, whose facets may be reserved already.
+void parse_stl_piece(std::string_view text, bool first, StlPiece* piece) {
   TextLines lines(text);
   std::string_view line;
   std::vector<std::string_view> t;
@@ -238,7 +238,7 @@ StlPiece parse_stl_piece(std::string_view text, bool first) {
   bool in_solid = !first;  // a later piece starts at a facet, inside a solid
   while (next()) {
     if (!in_solid) {
-      if (!keyword_is(t[0], "solid")) return piece;
+      if (!keyword_is(t[0], "solid")) return;
       in_solid = true;
       continue;
     }
@@ -246,21 +246,20 @@ StlPiece parse_stl_piece(std::string_view text, bool first) {
       in_solid = false;
       continue;
     }
-    if (!keyword_is(t[0], "facet")) return piece;
-    if (!next() || t.size() != 2 || !keyword_is(t[0], "outer") || !keyword_is(t[1], "loop")) return piece;
+    if (!keyword_is(t[0], "facet")) return;
+    if (!next() || t.size() != 2 || !keyword_is(t[0], "outer") || !keyword_is(t[1], "loop")) return;
     FacetCorners corners;
     for (int c = 0; c < 3; ++c) {
-      if (!next() || !keyword_is(t[0], "vertex") || t.size() != 4) return piece;
+      if (!next() || !keyword_is(t[0], "vertex") || t.size() != 4) return;
       for (int k = 0; k < 3; ++k)
-        if (parse_float(t[k + 1], &corners[c][k]) != NumberStatus::kOk || !std::isfinite(corners[c][k])) return piece;
+        if (parse_float(t[k + 1], &corners[c][k]) != NumberStatus::kOk || !std::isfinite(corners[c][k])) return;
     }
-    if (!next() || !keyword_is(t[0], "endloop")) return piece;
-    if (!next() || !keyword_is(t[0], "endfacet")) return piece;
-    piece.facets.push_back(corners);
+    if (!next() || !keyword_is(t[0], "endloop")) return;
+    if (!next() || !keyword_is(t[0], "endfacet")) return;
+    piece->facets.push_back(corners);
   }
-  piece.ok = true;
-  piece.ends_in_solid = in_solid;
-  return piece;
+  piece->ok = true;
+  piece->ends_in_solid = in_solid;
 }
 
 // Texts below this are read serially: a piece is worth a thread from about here.
@@ -287,7 +286,7 @@ std::optional<PolygonSoup> parse_ascii_stl_in_pieces(std::string_view text) {
   std::vector<StlPiece> pieces(start.size() - 1);
   for (std::size_t i = 0; i < pieces.size(); ++i) pieces[i].facets.reserve((start[i + 1] - start[i]) / 70 + 1);
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t i) {
-    pieces[i] = parse_stl_piece(text.substr(start[i], start[i + 1] - start[i]), i == 0);
+    parse_stl_piece(text.substr(start[i], start[i + 1] - start[i]), i == 0, &pieces[i]);
   });
   for (std::size_t i = 0; i < pieces.size(); ++i)
     if (!pieces[i].ok || (i + 1 < pieces.size() && !pieces[i].ends_in_solid)) return std::nullopt;
