@@ -20,8 +20,8 @@ namespace {
 constexpr const char* kTunable = "glibc.malloc.hugetlb";
 // One malloc arena for all threads: memory that TBB's worker threads freed stayed
 // resident in their own arenas, out of reach of the other threads' allocations, and
-// added to the peak (the 717 wing's 115 MB became 106 MB with one arena, the BWB's
-// 120 MB 111 MB, at the same wall time).
+// added to the peak (peak resident set: the 717 wing's 115,000 KiB became 106,000 KiB
+// with one arena, the BWB's 120,000 KiB 111,000 KiB, at the same wall time).
 constexpr const char* kArenaTunable = "glibc.malloc.arena_max";
 constexpr const char* kSettingVariable = "BLAYER_HUGE_PAGES";
 
