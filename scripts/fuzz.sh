@@ -27,7 +27,7 @@ fi
 # satisfy, instead of ASan aborting; VTK sizes a .vtp's connectivity from the offsets it
 # reads (data no precheck sees) with malloc and reports a null as an error. (ASan's
 # operator new still reports such a request: the VTP reader refuses the counts and
-# headers that would make VTK ask, see io/src/vtp_precheck.h.)
+# headers that would make VTK ask, see io/src/vtk_module/vtp_precheck.h.)
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:symbolize=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export ASAN_SYMBOLIZER_PATH="$(command -v llvm-symbolizer-14 || true)"

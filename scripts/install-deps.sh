@@ -19,6 +19,7 @@ packages=(
   nlohmann-json3-dev        # reports
   libcgal-dev libgmp-dev libmpfr-dev  # exact predicates: orient3d, the hull of face normals, the plane facet
   zlib1g-dev
+  liblz4-dev                # .vtu output with --vtk-compressor lz4
   libxml2-utils             # tests: xmllint checks that every .vtu/.vtp is well-formed XML
   python3-meshio            # tests: meshio (run by /usr/bin/python3) as an independent .vtu, .su2 and .msh reader
   libcgns-dev               # CGNS output

@@ -29,7 +29,8 @@ flags="-fsanitize=address,undefined -fno-omit-frame-pointer"
 # other flags.
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLAYER_BUILD_BENCH=OFF \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DBLAYER_TEST_CODE_FLAGS=-O0 \
-  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" >/dev/null
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
+  -DCMAKE_MODULE_LINKER_FLAGS="$flags" >/dev/null
 cmake --build "$build" -j "$jobs"
 # halt_on_error / abort_on_error: the first report fails the test. detect_leaks: the
 # whole test process is checked for leaks at exit. handle_segv=0: a segfault kills the

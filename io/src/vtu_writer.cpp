@@ -1,10 +1,7 @@
 #include "vtu_writer.h"
 
+#include <lz4.h>
 #include <tbb/parallel_for.h>
-#include <vtkDataCompressor.h>
-#include <vtkLZ4DataCompressor.h>
-#include <vtkSmartPointer.h>
-#include <vtkZLibDataCompressor.h>
 #include <zlib.h>
 
 #include <cerrno>
@@ -75,16 +72,22 @@ ArraySource widened_ids(const std::string& name, const std::vector<PointId>& ids
           }};
 }
 
-vtkSmartPointer<vtkDataCompressor> make_compressor(VtkCompressor c) {
-  vtkSmartPointer<vtkDataCompressor> z;
+// One block compressed as VTK's compressors do it (vtkZLibDataCompressor: compress2 at
+// the level; vtkLZ4DataCompressor: LZ4_compress_fast at the acceleration its level
+// gives, 10 - level), called directly so that writing a .vtu needs no VTK library: they
+// take 17 ms to load, on every run. Returns the compressed size, 0 on failure.
+std::size_t compress_block(VtkCompressor c, const std::vector<unsigned char>& raw, std::vector<unsigned char>* out) {
   if (c == VtkCompressor::kLz4) {
-    z = vtkSmartPointer<vtkLZ4DataCompressor>::New();
-    z->SetCompressionLevel(kLz4Level);
-  } else {
-    z = vtkSmartPointer<vtkZLibDataCompressor>::New();
-    z->SetCompressionLevel(kZlibLevel);
+    const int n = static_cast<int>(raw.size());
+    out->resize(static_cast<std::size_t>(LZ4_compressBound(n)));
+    const int size = LZ4_compress_fast(reinterpret_cast<const char*>(raw.data()), reinterpret_cast<char*>(out->data()),
+                                       n, static_cast<int>(out->size()), 10 - kLz4Level);
+    return size > 0 ? static_cast<std::size_t>(size) : 0;
   }
-  return z;
+  uLongf size = compressBound(static_cast<uLong>(raw.size()));
+  out->resize(size);
+  if (compress2(out->data(), &size, raw.data(), static_cast<uLong>(raw.size()), kZlibLevel) != Z_OK) return 0;
+  return size;
 }
 
 // Floating-point values compress poorly (zlib level 1 shrinks the coordinates and
@@ -183,9 +186,7 @@ void write_array_data(std::ostream& out, const ArraySource& a, VtkCompressor com
       if (stored_block(compressor, a)) {
         size = store_block(raw, &c);
       } else {
-        const vtkSmartPointer<vtkDataCompressor> z = make_compressor(compressor);
-        c.resize(z->GetMaximumCompressionSpace(raw.size()));
-        size = z->Compress(raw.data(), raw.size(), c.data(), c.size());
+        size = compress_block(compressor, raw, &c);
       }
       if (size == 0) throw IoError("cannot compress the values of array '" + a.name + "'");
       c.resize(size);

@@ -2,8 +2,9 @@
 // writer gives in its "binary" data mode (vtk_io.h): every DataArray inline, as the
 // base64 text of a block header followed by the base64 text of its compressed blocks
 // (32 KiB of values each, 64-bit header words: block count, block size, last block
-// size, then each compressed size). Blocks are compressed by VTK's own zlib or LZ4
-// compressor, except that with zlib the floating-point arrays' blocks are stored by
+// size, then each compressed size). Blocks are compressed as VTK's own zlib and LZ4
+// compressors do it, by zlib and liblz4 called directly (no VTK library is loaded to
+// write a .vtu), except that with zlib the floating-point arrays' blocks are stored by
 // zlib's compress2 at level 0 (below).
 //
 // Why not vtkXMLUnstructuredGridWriter: it compresses one block after the other, which

@@ -57,8 +57,8 @@ TEST(FuzzRegressions, PlyDeclaringTheVertexAndFaceElementsTwiceIsRefusedByName) 
 }
 
 // Headers that claim blocks of exabytes, or a billion blocks (an 8 GB table of block
-// sizes), are refused before VTK allocates the claim (io/src/vtp_precheck.h); under
-// AddressSanitizer VTK's allocation would be a sanitizer report.
+// sizes), are refused before VTK allocates the claim (io/src/vtk_module/vtp_precheck.h);
+// under AddressSanitizer VTK's allocation would be a sanitizer report.
 TEST(FuzzRegressions, VtpWhoseBlockHeaderClaimsExabytesIsRefusedBeforeVtkAllocates) {
   const std::pair<const char*, const char*> files[] = {
       {"block_header_claims_4e18_bytes.vtp", "bytes decompressed"},
