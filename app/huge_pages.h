@@ -3,12 +3,11 @@
 // the M6 571k surface, 719,000 faults and a third of the run's wall time. glibc's malloc
 // advises the kernel to back its large chunks with 2 MiB pages when the tunable
 // glibc.malloc.hugetlb=1 is set (glibc 2.35 and later, with the kernel's THP mode
-// "madvise"), but glibc reads its tunables only when a process
-// starts: the process that runs the command line is executed with the tunable added,
-// by the `blayer` launcher (launcher.cpp), which loads none of the command line's
-// libraries (VTK's alone took 18 ms to load, a second time when the command line
-// re-executed itself). BLAYER_HUGE_PAGES=0 turns this off; the executed process finds it
-// set to 1.
+// "madvise"), but glibc reads its tunables only when a process starts: the process that
+// runs the command line is executed with the tunable added, by the `blayer` launcher
+// (launcher.cpp), which loads none of the command line's libraries (a command line that
+// re-executed itself loaded them twice). BLAYER_HUGE_PAGES=0 turns this off; the
+// executed process finds it set to 1.
 #pragma once
 
 #include <optional>

@@ -2,8 +2,8 @@
 // reads the tunable that gives malloc's large chunks huge pages only when a process
 // starts (huge_pages.h), so the process that runs a mesh job must be executed with it
 // set. This launcher sets it and executes the command line with the same arguments; it
-// links none of the command line's libraries, whose loading (VTK's: 18 ms) a
-// self-re-executing command line paid twice.
+// links none of the command line's libraries, which a self-re-executing command line
+// loaded twice.
 #include <unistd.h>
 
 #include <cerrno>
