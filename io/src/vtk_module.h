@@ -1,8 +1,9 @@
 // The VTK readers and the .vtp writer, in a module loaded when the first of them is
 // used instead of linked. VTK's libraries take 17 ms to load (an empty program linked
-// to the five blayer uses: 21-22 ms against 4.3-4.7 ms, perf stat, 30 runs, three
-// times), in every run, while a run that reads an STL, OBJ, OFF or PLY surface and
-// writes a .vtu needs none of them (the .vtu writer calls zlib and liblz4 itself).
+// to the five VTK libraries blayer uses: 21-22 ms against 4.3-4.7 ms, perf stat, 30
+// runs, three times), in every run, while a run that reads an STL, OBJ, OFF or PLY
+// surface and writes a .vtu needs none of them (the .vtu writer calls zlib and liblz4
+// itself).
 //
 // The module (libblayer_vtk.so, built beside blayer_io) holds its own copy of the
 // blayer code it uses. No exception crosses its boundary: each function reports a

@@ -1,6 +1,5 @@
 #include <dlfcn.h>
 
-#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -20,8 +19,10 @@ const VtkModule& load_vtk_module(const std::string& path) {
   using Entry = const VtkModule* (*)();
   const auto entry = reinterpret_cast<Entry>(dlsym(handle, "blayer_vtk_module"));
   const VtkModule* m = entry ? entry() : nullptr;
-  if (!m || m->version != VtkModule::kVersion)
-    throw IoError("blayer's VTK module " + path + " is from another build (scripts/build.sh rebuilds it)");
+  if (!m || m->version != VtkModule::kVersion) {
+    dlclose(handle);
+    throw IoError(path + " is not blayer's VTK module of this build (scripts/build.sh builds it)");
+  }
   return *m;  // the handle stays open: the functions are used until the process ends
 }
 

@@ -1,10 +1,11 @@
 // VTK XML PolyData (.vtp), through VTK's reader (the format has too many encodings to
 // parse by hand: ascii, base64, appended raw, four compressors), run by blayer_io in a
-// child process (vtp_reader.cpp, parse_in_child.h): VTK trusts the counts and compressed-block headers of the file,
-// and a corrupt one makes it allocate exabytes or read out of bounds. The checks of
-// vtp_precheck.h refuse those claims first; the child and its address-space limit
-// remain for what they cannot see (a crash inside VTK, the connectivity VTK sizes from
-// the offsets it reads, several arrays that together exceed the allowance).
+// child process (vtp_reader.cpp, parse_in_child.h): VTK trusts the counts and
+// compressed-block headers of the file, and a corrupt one makes it allocate exabytes or
+// read out of bounds. The checks of vtp_precheck.h refuse those claims first; the child
+// and its address-space limit remain for what they cannot see (a crash inside VTK, the
+// connectivity VTK sizes from the offsets it reads, several arrays that together exceed
+// the allowance).
 //
 // VTK reports problems (its XML parser's included) through the global output window,
 // which would print them before blayer's own "error:" line and does not always set the
@@ -133,7 +134,7 @@ PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
   } catch (const std::bad_alloc&) {
     // What the prechecks cannot see (above) can still claim more memory than exists.
     fail(name, "cannot parse the .vtp file (it claims more data than memory can hold: a corrupt count or "
-                     "data block header)");
+               "data block header)");
   }
   vtkPolyData* poly = reader->GetOutput();
   fail_if_vtk_failed(reader->GetErrorCode() != 0 || !poly);
@@ -155,7 +156,7 @@ PolygonSoup parse_vtp_here(std::string_view bytes, const std::string& name) {
     for (vtkIdType k = 0; k < n; ++k) {
       if (ids[k] < -2147483648LL || ids[k] > 2147483647LL)
         fail(name, "polygon " + std::to_string(soup.faces.size()) + ": point index " + std::to_string(ids[k]) +
-                             " does not fit an int");
+                       " does not fit an int");
       face.push_back(static_cast<int>(ids[k]));
     }
     soup.faces.push_back(std::move(face));
