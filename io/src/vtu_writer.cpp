@@ -72,8 +72,37 @@ ArraySource widened_ids(const std::string& name, const std::vector<PointId>& ids
           }};
 }
 
+// A zlib stream that compresses one block at a time at a fixed level, as compress2
+// does (deflateInit's window and memory level; deflateReset between blocks gives the
+// same bytes as a new stream). compress2 allocates and frees the stream's state, about
+// 270 KiB, for every 32 KiB block, and with the run's one malloc arena the threads
+// waited on each other for it; a stream per thread and level is allocated once.
+class Deflater {
+ public:
+  explicit Deflater(int level) { ok_ = deflateInit(&z_, level) == Z_OK; }
+  ~Deflater() {
+    if (ok_) deflateEnd(&z_);
+  }
+  Deflater(const Deflater&) = delete;
+  Deflater& operator=(const Deflater&) = delete;
+  // The zlib stream of raw in *out (resized to hold it); its size, 0 on failure.
+  std::size_t compress(const std::vector<unsigned char>& raw, std::vector<unsigned char>* out) {
+    if (!ok_ || deflateReset(&z_) != Z_OK) return 0;
+    out->resize(deflateBound(&z_, static_cast<uLong>(raw.size())));
+    z_.next_in = const_cast<Bytef*>(raw.data());
+    z_.avail_in = static_cast<uInt>(raw.size());
+    z_.next_out = out->data();
+    z_.avail_out = static_cast<uInt>(out->size());
+    return deflate(&z_, Z_FINISH) == Z_STREAM_END ? static_cast<std::size_t>(z_.total_out) : 0;
+  }
+
+ private:
+  z_stream z_{};
+  bool ok_ = false;
+};
+
 // One block compressed as VTK's compressors do it (vtkZLibDataCompressor: compress2 at
-// the level; vtkLZ4DataCompressor: LZ4_compress_fast at the acceleration its level
+// the level, here its stream kept per thread; vtkLZ4DataCompressor: LZ4_compress_fast at the acceleration its level
 // gives, 10 - level), called directly so that writing a .vtu needs no VTK library: they
 // take 17 ms to load, on every run. Returns the compressed size, 0 on failure.
 std::size_t compress_block(VtkCompressor c, const std::vector<unsigned char>& raw, std::vector<unsigned char>* out) {
@@ -84,10 +113,8 @@ std::size_t compress_block(VtkCompressor c, const std::vector<unsigned char>& ra
                                        n, static_cast<int>(out->size()), 10 - kLz4Level);
     return size > 0 ? static_cast<std::size_t>(size) : 0;
   }
-  uLongf size = compressBound(static_cast<uLong>(raw.size()));
-  out->resize(size);
-  if (compress2(out->data(), &size, raw.data(), static_cast<uLong>(raw.size()), kZlibLevel) != Z_OK) return 0;
-  return size;
+  thread_local Deflater deflater(kZlibLevel);
+  return deflater.compress(raw, out);
 }
 
 // Floating-point values compress poorly (zlib level 1 shrinks the coordinates and
@@ -98,10 +125,8 @@ std::size_t compress_block(VtkCompressor c, const std::vector<unsigned char>& ra
 bool stored_block(VtkCompressor c, const ArraySource& a) { return c == VtkCompressor::kZlib && a.type[0] == 'F'; }
 
 std::size_t store_block(const std::vector<unsigned char>& raw, std::vector<unsigned char>* out) {
-  uLongf size = compressBound(static_cast<uLong>(raw.size()));
-  out->resize(size);
-  if (compress2(out->data(), &size, raw.data(), static_cast<uLong>(raw.size()), 0) != Z_OK) return 0;
-  return size;
+  thread_local Deflater stored(0);
+  return stored.compress(raw, out);
 }
 
 const char* compressor_name(VtkCompressor c) {
