@@ -134,10 +134,14 @@ struct Sectors {
 
 Sectors sectors_of(const VertexFan& fan, int v, const RidgeIndex& ridge_index) {
   const int k = static_cast<int>(fan.triangles.size());
-  Sectors s;
-  std::vector<int>& split = s.first;  // fan triangle i whose leading edge (v, ring[i]) is a ridge
+  // Fan triangle i whose leading edge (v, ring[i]) is a ridge; gathered in a per-thread
+  // buffer and copied once (see sector_normal).
+  thread_local std::vector<int> split;
+  split.clear();
   for (int i = 0; i < k; ++i)
     if (ridge_index.find(v, fan.ring[i]) >= 0) split.push_back(i);
+  Sectors s;
+  s.first.assign(split.begin(), split.end());
   s.sector_of.assign(k, -1);
   for (std::size_t j = 0; j < split.size(); ++j) {
     const int end = j + 1 < split.size() ? split[j + 1] : split[0] + k;

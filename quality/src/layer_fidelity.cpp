@@ -88,13 +88,15 @@ class ColumnGraph {
 constexpr double kMinContinuationCosine = 0.5;
 
 // The column that leaves wall point w through its first point q: q and the points
-// after it, in order. Where a point has several onward column edges, the one best
-// aligned with the column's last segment is followed if it turns by less than 60
-// degrees; *branching is set when another one also does.
-std::vector<std::int64_t> follow_column(std::int64_t w, std::int64_t q, const VolumeMesh& mesh,
-                                        const ColumnGraph& nb, std::size_t n_wall,
-                                        bool* branching) {
-  std::vector<std::int64_t> path{q};
+// after it, in order, into *path. Where a point has several onward column edges, the
+// one best aligned with the column's last segment is followed if it turns by less than
+// 60 degrees; *branching is set when another one also does. The caller's path keeps its
+// capacity from column to column: the run's malloc has one arena, and the threads'
+// allocations of a path per column waited on each other.
+void follow_column(std::int64_t w, std::int64_t q, const VolumeMesh& mesh, const ColumnGraph& nb, std::size_t n_wall,
+                   std::vector<std::int64_t>* out, bool* branching) {
+  std::vector<std::int64_t>& path = *out;
+  path.assign(1, q);
   std::int64_t prev = w, cur = q;
   *branching = false;
   // A column cannot be longer than the mesh has points; the bound also stops a cycle.
@@ -120,7 +122,6 @@ std::vector<std::int64_t> follow_column(std::int64_t w, std::int64_t q, const Vo
     prev = cur;
     cur = next;
   }
-  return path;
 }
 
 // The first points of the columns leaving each wall point (column edges to a point
@@ -252,23 +253,24 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
   const detail::NearestTriangleTree& tree = *wall_tree;
   // Every wall point's columns, measured in parallel (follow_column and the nearest-point
   // queries are most of a report's time), then counted in point order, so the figures
-  // do not depend on the schedule.
-  struct PointColumns {
-    std::vector<ColumnFidelity> columns;  // one per column leaving the point, as firsts
-    int branching = 0;
-  };
-  std::vector<PointColumns> measured(n_wall);
+  // do not depend on the schedule. Point w's columns are measured[first[w] ..
+  // first[w + 1]), one per column leaving it (a point without a column edge off the wall
+  // has one, without layers): one array for all, as an array per point made the threads
+  // wait on each other in the run's one malloc arena.
+  std::vector<std::size_t> first(n_wall + 1, 0);
+  for (std::size_t w = 0; w < n_wall; ++w)
+    first[w + 1] = first[w] + (incident[w].empty() ? 0 : std::max<std::size_t>(1, starts[w].size()));
+  std::vector<ColumnFidelity> measured(first[n_wall]);
+  std::vector<int> branching_columns(n_wall, 0);
   tbb::parallel_for(std::size_t(0), n_wall, [&](std::size_t w) {
     if (incident[w].empty()) return;
-    // A point without a column edge off the wall has one column, without layers.
-    const std::size_t n_firsts = std::max<std::size_t>(1, starts[w].size());
-    measured[w].columns.resize(n_firsts);
     for (std::size_t i = 0; i < starts[w].size(); ++i) {
       const std::int64_t q = starts[w][i];
-      ColumnFidelity& c = measured[w].columns[i];
+      ColumnFidelity& c = measured[first[w] + i];
       bool branching = false;
-      const std::vector<std::int64_t> path = follow_column(static_cast<std::int64_t>(w), q, mesh, nb, n_wall, &branching);
-      measured[w].branching += branching ? 1 : 0;
+      thread_local std::vector<std::int64_t> path;
+      follow_column(static_cast<std::int64_t>(w), q, mesh, nb, n_wall, &path, &branching);
+      branching_columns[w] += branching ? 1 : 0;
       // The planes: all the point's triangles, or with a fan the column's own.
       const std::vector<int>* planes = &incident[w];
       if (starts[w].size() > 1) {
@@ -289,7 +291,7 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
       c.top_height_planes = height_planes(top);
       c.top_distance = tree.nearest(top).distance;
     }
-    if (starts[w].empty()) measured[w].columns[0].top_point = static_cast<std::int64_t>(w);
+    if (starts[w].empty()) measured[first[w]].top_point = static_cast<std::int64_t>(w);
   });
   LayerFidelity f;
   f.columns.resize(n_wall);
@@ -303,10 +305,9 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
       continue;
     }
     if (starts[w].size() > 1) ++f.n_fan_points;
-    f.n_branching += measured[w].branching;
-    const std::vector<ColumnFidelity>& columns = measured[w].columns;
-    for (std::size_t i = 0; i < columns.size(); ++i) {
-      const ColumnFidelity& c = columns[i];
+    f.n_branching += branching_columns[w];
+    for (std::size_t i = 0; i < first[w + 1] - first[w]; ++i) {
+      const ColumnFidelity& c = measured[first[w] + i];
       ++f.n_columns;
       if (!starts[w].empty()) {
         ++f.n_grown;
