@@ -153,9 +153,9 @@ Sectors sectors_of(const VertexFan& fan, int v, const RidgeIndex& ridge_index) {
 // The sector's normal at v: the normal method on the sector's triangles alone (an open
 // fan: its link is open, so the methods fall back to the most-visible direction of
 // those faces; a flat sector gives its face normal). Solved for thousands of fan points
-// in parallel, with the ring and the geometry in per-thread buffers: run's malloc has
-// one arena (app/huge_pages.h), and the threads' allocations here waited on each other
-// (the perforated block's layout took 44-48 ms on two threads, 27 ms on one).
+// in parallel, with the ring and the geometry in per-thread buffers: the run's malloc
+// has one arena (app/huge_pages.h), and the threads' allocations here waited on each
+// other (the perforated block's layout took 44-48 ms on two threads, 27 ms on one).
 Vec3 sector_normal(const TriSurface& wall, const VertexFan& fan, int v, const Sectors& s, int sector,
                    NormalMethod method) {
   const int k = static_cast<int>(fan.triangles.size());
