@@ -21,7 +21,10 @@ constexpr const char* kTunable = "glibc.malloc.hugetlb";
 // One malloc arena for all threads: memory that TBB's worker threads freed stayed
 // resident in their own arenas, out of reach of the other threads' allocations, and
 // added to the peak (peak resident set: the 717 wing's 115,000 KiB became 106,000 KiB
-// with one arena, the BWB's 120,000 KiB 111,000 KiB, at the same wall time).
+// with one arena, the BWB's 120,000 KiB 111,000 KiB). Threads that allocate side by
+// side then wait on the arena's lock, so parallel loops keep their allocations out of
+// the loop body (per-thread buffers: the fan layout, the fidelity report, the .vtu
+// writer's zlib streams).
 constexpr const char* kArenaTunable = "glibc.malloc.arena_max";
 constexpr const char* kSettingVariable = "BLAYER_HUGE_PAGES";
 

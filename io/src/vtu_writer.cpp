@@ -102,9 +102,10 @@ class Deflater {
 };
 
 // One block compressed as VTK's compressors do it (vtkZLibDataCompressor: compress2 at
-// the level, here its stream kept per thread; vtkLZ4DataCompressor: LZ4_compress_fast at the acceleration its level
-// gives, 10 - level), called directly so that writing a .vtu needs no VTK library: they
-// take 17 ms to load, on every run. Returns the compressed size, 0 on failure.
+// the level, here its stream kept per thread; vtkLZ4DataCompressor: LZ4_compress_fast
+// at the acceleration its level gives, 10 - level), called directly so that writing a
+// .vtu needs no VTK library: they take 17 ms to load, on every run. Returns the
+// compressed size, 0 on failure.
 std::size_t compress_block(VtkCompressor c, const std::vector<unsigned char>& raw, std::vector<unsigned char>* out) {
   if (c == VtkCompressor::kLz4) {
     const int n = static_cast<int>(raw.size());

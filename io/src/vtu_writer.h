@@ -5,7 +5,7 @@
 // size, then each compressed size). Blocks are compressed as VTK's own zlib and LZ4
 // compressors do it, by zlib and liblz4 called directly (no VTK library is loaded to
 // write a .vtu), except that with zlib the floating-point arrays' blocks are stored by
-// zlib's compress2 at level 0 (below).
+// zlib at level 0 (below).
 //
 // Why not vtkXMLUnstructuredGridWriter: it compresses one block after the other, which
 // made the write the largest single step after the extrusion (9.6 s of a 143 s run on

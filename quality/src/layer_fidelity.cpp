@@ -88,9 +88,9 @@ class ColumnGraph {
 constexpr double kMinContinuationCosine = 0.5;
 
 // The column that leaves wall point w through its first point q: q and the points
-// after it, in order, into *path. Where a point has several onward column edges, the
+// after it, in order, into *out. Where a point has several onward column edges, the
 // one best aligned with the column's last segment is followed if it turns by less than
-// 60 degrees; *branching is set when another one also does. The caller's path keeps its
+// 60 degrees; *branching is set when another one also does. The caller's *out keeps its
 // capacity from column to column: the run's malloc has one arena, and the threads'
 // allocations of a path per column waited on each other.
 void follow_column(std::int64_t w, std::int64_t q, const VolumeMesh& mesh, const ColumnGraph& nb, std::size_t n_wall,
