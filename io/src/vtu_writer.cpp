@@ -74,9 +74,10 @@ ArraySource widened_ids(const std::string& name, const std::vector<PointId>& ids
 
 // A zlib stream that compresses one block at a time at a fixed level, as compress2
 // does (deflateInit's window and memory level; deflateReset between blocks gives the
-// same bytes as a new stream). compress2 allocates and frees the stream's state, about
-// 270 KiB, for every 32 KiB block, and with the run's one malloc arena the threads
-// waited on each other for it; a stream per thread and level is allocated once.
+// same bytes as a new stream). compress2 allocates and frees the stream's state for
+// every 32 KiB block (256 KiB and a few more by zlib's own formula for window 15 and
+// memory level 8), and with the run's one malloc arena the threads waited on each other
+// for it; a stream per thread and level is allocated once.
 class Deflater {
  public:
   explicit Deflater(int level) { ok_ = deflateInit(&z_, level) == Z_OK; }
