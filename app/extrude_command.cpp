@@ -153,7 +153,6 @@ MeshCheckReport decide_validity(VolumeMesh& mesh, std::size_t n_layer_cells, boo
       check_volume_mesh(mesh, for_report ? CheckSummaries::kFull : CheckSummaries::kMinMax);
   const std::vector<double>& volume = check.metrics[kVolumeMetric];
   for (std::size_t c = 0; c < volume.size(); ++c) (c < n_layer_cells ? volumes->layers : volumes->fill) += volume[c];
-  release_free_heap();  // the check's face tables, before the arrays below are made
   move_quality_arrays(mesh, &check);
   if (!check.ok())
     throw std::runtime_error("the assembled mesh failed the independent check (" +
@@ -249,7 +248,7 @@ int run_extrude_command(const ParamValues& params) {
   std::fflush(stdout);
 
   ExtrusionResult result = extrude_layers_in_spatial_order(&prepared.surface, ep, progress_bar());
-  release_free_heap();
+  release_free_heap();  // the march's working state, freed on its return
   const std::size_t n_layer_cells = result.mesh.n_cells();
   std::printf("%s", format_extrusion_report(result.report).c_str());
   const std::string thin = thickness_warning(result.report);
@@ -260,7 +259,6 @@ int run_extrude_command(const ParamValues& params) {
   const Stopwatch check_time;
   MeshVolumes volumes;
   const MeshCheckReport check = decide_validity(result.mesh, n_layer_cells, !out.report.empty(), &volumes);
-  release_free_heap();  // the check's double metrics, now stored as Float32
   const double check_seconds = check_time.seconds();
 
   std::optional<MarkedBoundary> boundary;

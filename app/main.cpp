@@ -8,6 +8,7 @@
 #include <tbb/global_control.h>
 
 #include "blayer/core/errors.h"
+#include "blayer/core/free_heap.h"
 #include "commands.h"
 #include "huge_pages.h"
 #include "parameters.h"
@@ -15,6 +16,7 @@
 int main(int argc, char** argv) {
   using namespace blayer;
   reexecute_on_huge_pages(argc, argv);  // before anything is allocated or printed
+  keep_arrays_in_heap();
   CLI::App app{"blayer: prism boundary-layer meshes for RANS CFD"};
   app.require_subcommand(1);
   app.fallthrough(false);

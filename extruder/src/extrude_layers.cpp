@@ -9,7 +9,6 @@
 
 #include "blayer/core/assert.h"
 #include "blayer/core/errors.h"
-#include "blayer/core/free_heap.h"
 #include "blayer/core/stopwatch.h"
 #include "blayer/extruder/column_heights.h"
 #include "blayer/extruder/column_plan.h"
@@ -257,10 +256,6 @@ ExtrusionResult march(const TriSurface& wall, const WallTopology& wall_topo,
   }
   rep.t_report = phase.seconds();
   phase.restart();
-  // After the summary, whose tables are freed, and with the march's working state and
-  // the summary's returned to the system: the arrays are fresh pages and would add to
-  // them otherwise.
-  release_free_heap();
   assembler.attach_arrays(columns, &res.mesh);
   rep.t_assembly += phase.seconds();
   rep.t_total = total.seconds();
