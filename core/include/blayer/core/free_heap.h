@@ -27,7 +27,7 @@ inline bool tunables_choose_mmap_threshold(const char* tunables) {
 // zeroes page by page when it is first written and takes back when it is freed, so each
 // phase paid again for the pages the phase before had used. From the heap, the next
 // phase's arrays reuse them: on the benchmark surfaces about half the page faults and
-// 3-12 % of the wall time went, at the same peak (README, "Memory and huge pages").
+// 4-16 % of the wall time went, at the same peak (README, "Memory and huge pages").
 inline void keep_arrays_in_heap() {
 #if defined(__GLIBC__)
   if (!tunables_choose_mmap_threshold(std::getenv("GLIBC_TUNABLES")))
@@ -39,7 +39,7 @@ inline void keep_arrays_in_heap() {
 // when the march's working state (a third of its memory) has been freed: the check's
 // and the writer's arrays then fit in the peak the march reached, while without it the
 // freed state, split among live arrays, stayed resident under them (the perforated
-// block's peak 13-18 MB higher). Costs a walk over the free lists, and the faults of
+// block's peak 20-23 MB higher). Costs a walk over the free lists, and the faults of
 // the pages it returns when they are used again.
 inline void release_free_heap() {
 #if defined(__GLIBC__)
