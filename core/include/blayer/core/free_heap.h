@@ -39,7 +39,7 @@ inline void keep_arrays_in_heap() {
 // when the march's working state (a third of its memory) has been freed: the check's
 // and the writer's arrays then fit in the peak the march reached, while without it the
 // freed state, split among live arrays, stayed resident under them (the perforated
-// block's peak 20-23 MB higher). Costs a walk over the free lists, and the faults of
+// block's peak about 20 MB higher). Costs a walk over the free lists, and the faults of
 // the pages it returns when they are used again.
 inline void release_free_heap() {
 #if defined(__GLIBC__)
