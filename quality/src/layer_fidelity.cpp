@@ -253,20 +253,21 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
   const detail::NearestTriangleTree& tree = *wall_tree;
   // Every wall point's columns, measured in parallel (follow_column and the nearest-point
   // queries are most of a report's time), then counted in point order, so the figures
-  // do not depend on the schedule. Point w's columns are measured[first[w] ..
-  // first[w + 1]), one per column leaving it (a point without a column edge off the wall
-  // has one, without layers): one array for all, as an array per point made the threads
-  // wait on each other in the run's one malloc arena.
-  std::vector<std::size_t> first(n_wall + 1, 0);
+  // do not depend on the schedule. Point w's columns are measured[column_begin[w] ..
+  // column_begin[w + 1]), one per column leaving it (a point without a column edge off
+  // the wall has one, without layers): one array for all, as an array per point made
+  // the threads wait on each other in the run's one malloc arena.
+  std::vector<std::size_t> column_begin(n_wall + 1, 0);
   for (std::size_t w = 0; w < n_wall; ++w)
-    first[w + 1] = first[w] + (incident[w].empty() ? 0 : std::max<std::size_t>(1, starts[w].size()));
-  std::vector<ColumnFidelity> measured(first[n_wall]);
+    column_begin[w + 1] =
+        column_begin[w] + (incident[w].empty() ? 0 : std::max<std::size_t>(1, starts[w].size()));
+  std::vector<ColumnFidelity> measured(column_begin[n_wall]);
   std::vector<int> branching_columns(n_wall, 0);
   tbb::parallel_for(std::size_t(0), n_wall, [&](std::size_t w) {
     if (incident[w].empty()) return;
     for (std::size_t i = 0; i < starts[w].size(); ++i) {
       const std::int64_t q = starts[w][i];
-      ColumnFidelity& c = measured[first[w] + i];
+      ColumnFidelity& c = measured[column_begin[w] + i];
       bool branching = false;
       thread_local std::vector<std::int64_t> path;
       follow_column(static_cast<std::int64_t>(w), q, mesh, nb, n_wall, &path, &branching);
@@ -291,7 +292,7 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
       c.top_height_planes = height_planes(top);
       c.top_distance = tree.nearest(top).distance;
     }
-    if (starts[w].empty()) measured[first[w]].top_point = static_cast<std::int64_t>(w);
+    if (starts[w].empty()) measured[column_begin[w]].top_point = static_cast<std::int64_t>(w);
   });
   LayerFidelity f;
   f.columns.resize(n_wall);
@@ -306,8 +307,8 @@ LayerFidelity measure_layer_fidelity(const VolumeMesh& mesh, const TriSurface& w
     }
     if (starts[w].size() > 1) ++f.n_fan_points;
     f.n_branching += branching_columns[w];
-    for (std::size_t i = 0; i < first[w + 1] - first[w]; ++i) {
-      const ColumnFidelity& c = measured[first[w] + i];
+    for (std::size_t i = 0; i < column_begin[w + 1] - column_begin[w]; ++i) {
+      const ColumnFidelity& c = measured[column_begin[w] + i];
       ++f.n_columns;
       if (!starts[w].empty()) {
         ++f.n_grown;
