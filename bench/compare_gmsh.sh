@@ -49,7 +49,7 @@ for ((run = 0; run < ${BENCH_REPEAT:-1}; ++run)); do
     --growth-ratio "$ratio" ${BLAYER_ARGS:-}
 done
 echo "ratio blayer/gmsh wall time (fastest runs: $(cat "$work/blayer.secs") s / $(cat "$work/gmsh.secs") s): $(ratio blayer gmsh)"
-echo "ratio blayer/gmsh CPU time (least of the runs: $(cat "$work/blayer.cpu") s / $(cat "$work/gmsh.cpu") s): $(cpu_ratio blayer gmsh)"
+echo "ratio blayer/gmsh CPU time (least of the runs: $(cat "$work/blayer.cpu") s / $(cat "$work/gmsh.cpu") s): $(ratio blayer gmsh cpu)"
 echo "ratio blayer/gmsh peak memory (largest runs): $(memory_ratio blayer gmsh)"
 law=(--wall "$work/$name.stl" --layers "$layers" --first-height "$h1" --growth-ratio "$ratio")
 echo "--- blayer check of Gmsh's mesh:"

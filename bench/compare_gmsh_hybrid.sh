@@ -63,7 +63,7 @@ echo "surface $surface: N=$layers h1=$h1 r=$ratio farfield scale $scale"
 measure blayer "$blayer" extrude "$surface" -o "$work/blayer.vtu" --layers "$layers" --first-height "$h1" \
   --growth-ratio "$ratio" --fill --farfield-scale "$scale"
 echo "ratio blayer/gmsh wall time: $(ratio blayer gmsh)"
-echo "ratio blayer/gmsh CPU time: $(cpu_ratio blayer gmsh)"
+echo "ratio blayer/gmsh CPU time: $(ratio blayer gmsh cpu)"
 echo "ratio blayer/gmsh peak memory: $(memory_ratio blayer gmsh)"
 for m in gmsh.vtk blayer.vtu; do
   echo "--- blayer check of ${m%%.*}'s mesh:"

@@ -14,23 +14,22 @@ measure() {
   local cpu
   cpu=$(printf "%.2f" "$(echo "$user + $sys" | bc -l)")
   printf "%-8s wall %8.2f s   cpu %8.2f s   peak RSS %8.1f MB\n" "$label" "$secs" "$cpu" "$(echo "$kb / 1024" | bc -l)"
-  if [ ! -f "$work/$label.secs" ] || [ "$(echo "$secs < $(cat "$work/$label.secs")" | bc -l)" = 1 ]; then
-    echo "$secs" > "$work/$label.secs"
-  fi
-  if [ ! -f "$work/$label.cpu" ] || [ "$(echo "$cpu < $(cat "$work/$label.cpu")" | bc -l)" = 1 ]; then
-    echo "$cpu" > "$work/$label.cpu"
-  fi
+  keep_least "$work/$label.secs" "$secs"
+  keep_least "$work/$label.cpu" "$cpu"
   if [ ! -f "$work/$label.kb" ] || [ "$kb" -gt "$(cat "$work/$label.kb")" ]; then
     echo "$kb" > "$work/$label.kb"
   fi
 }
 
-ratio() {  # ratio A B: seconds of A over seconds of B
-  echo "$(cat "$work/$1.secs") / $(cat "$work/$2.secs")" | bc -l | cut -c1-5
+keep_least() {  # keep_least FILE VALUE: VALUE into FILE unless FILE holds a smaller one
+  if [ ! -f "$1" ] || [ "$(echo "$2 < $(cat "$1")" | bc -l)" = 1 ]; then
+    echo "$2" > "$1"
+  fi
 }
 
-cpu_ratio() {  # cpu_ratio A B: the least CPU seconds of A over those of B
-  echo "$(cat "$work/$1.cpu") / $(cat "$work/$2.cpu")" | bc -l | cut -c1-5
+ratio() {  # ratio A B [secs|cpu]: A's fastest wall seconds (or least CPU seconds) over B's
+  local kind="${3:-secs}"
+  echo "$(cat "$work/$1.$kind") / $(cat "$work/$2.$kind")" | bc -l | cut -c1-5
 }
 
 memory_ratio() {  # memory_ratio A B: the peak memory of A's largest run over B's
