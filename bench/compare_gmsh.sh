@@ -53,7 +53,20 @@ echo "ratio blayer/gmsh CPU time (least of the runs: $(cat "$work/blayer.cpu") s
 echo "ratio blayer/gmsh peak memory (largest runs): $(memory_ratio blayer gmsh)"
 law=(--wall "$work/$name.stl" --layers "$layers" --first-height "$h1" --growth-ratio "$ratio")
 echo "--- blayer check of Gmsh's mesh:"
-"$blayer" check "$work/gmsh.vtk" "${law[@]}" | grep -E "^(cells:|inverted:|min_corner|  fidelity|    )" || true
+"$blayer" check "$work/gmsh.vtk" "${law[@]}" > "$work/gmsh.check" 2>&1 || true
+grep -E "^(cells:|inverted:|min_corner|  fidelity|    )" "$work/gmsh.check" || true
 echo "--- blayer check of blayer's mesh:"
-"$blayer" check "$work/blayer.vtu" "${law[@]}" | grep -E "^(cells:|inverted:|min_corner|  time:|  fidelity|    )" || true
+"$blayer" check "$work/blayer.vtu" "${law[@]}" > "$work/blayer.check" 2>&1 || true
+grep -E "^(cells:|inverted:|min_corner|  time:|  fidelity|    )" "$work/blayer.check" || true
 grep -E "^(coverage|columns|time)" "$work/blayer.log" || true
+# Fans at sharp edges (--fan-angle) give blayer several columns per ridge point, and so
+# more cells than Gmsh's one column per point: the work per delivered cell compares them
+# where the cell counts differ.
+cells_b=$(awk '/^cells:/ {print $2; exit}' "$work/blayer.check")
+cells_g=$(awk '/^cells:/ {print $2; exit}' "$work/gmsh.check")
+if [[ -n "$cells_b" && -n "$cells_g" ]]; then
+  per_b=$(echo "$cells_b / $(cat "$work/blayer.cpu")" | bc -l)
+  per_g=$(echo "$cells_g / $(cat "$work/gmsh.cpu")" | bc -l)
+  printf "cells per CPU second (cells over the least CPU time): blayer %.0f (%s cells), gmsh %.0f (%s cells); ratio blayer/gmsh %.3f\n" \
+    "$per_b" "$cells_b" "$per_g" "$cells_g" "$(echo "$per_b / $per_g" | bc -l)"
+fi
