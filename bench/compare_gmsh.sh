@@ -64,9 +64,10 @@ grep -E "^(coverage|columns|time)" "$work/blayer.log" || true
 # where the cell counts differ.
 cells_b=$(awk '/^cells:/ {print $2; exit}' "$work/blayer.check")
 cells_g=$(awk '/^cells:/ {print $2; exit}' "$work/gmsh.check")
-if [[ -n "$cells_b" && -n "$cells_g" ]]; then
-  per_b=$(echo "$cells_b / $(cat "$work/blayer.cpu")" | bc -l)
-  per_g=$(echo "$cells_g / $(cat "$work/gmsh.cpu")" | bc -l)
+cpu_b=$(cat "$work/blayer.cpu"); cpu_g=$(cat "$work/gmsh.cpu")
+if [[ -n "$cells_b" && -n "$cells_g" ]] && [ "$(echo "$cpu_b > 0 && $cpu_g > 0" | bc -l)" = 1 ]; then
+  per_b=$(echo "$cells_b / $cpu_b" | bc -l)
+  per_g=$(echo "$cells_g / $cpu_g" | bc -l)
   printf "cells per CPU second (cells over the least CPU time): blayer %.0f (%s cells), gmsh %.0f (%s cells); ratio blayer/gmsh %.3f\n" \
     "$per_b" "$cells_b" "$per_g" "$cells_g" "$(echo "$per_b / $per_g" | bc -l)"
 fi
