@@ -29,7 +29,7 @@ keep_least() {  # keep_least FILE VALUE: VALUE into FILE unless FILE holds a sma
 
 ratio() {  # ratio A B [secs|cpu]: A's fastest wall seconds (or least CPU seconds) over B's
   local kind="${3:-secs}"
-  echo "$(cat "$work/$1.$kind") / $(cat "$work/$2.$kind")" | bc -l | cut -c1-5
+  printf "%.3f" "$(echo "$(cat "$work/$1.$kind") / $(cat "$work/$2.$kind")" | bc -l)"
 }
 
 memory_ratio() {  # memory_ratio A B: the peak memory of A's largest run over B's
