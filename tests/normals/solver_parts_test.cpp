@@ -4,7 +4,9 @@
 // size (also where it sets invisible cells aside and where cell centres raise its
 // floor), the link-vertex lens holds every sampled direction of its superlevel set, the
 // lower envelope of V along a plateau circle peaks as high as all pairwise crossings do,
-// and the constraint pass's great-circle screen keeps every circle through a leaf.
+// the constraint pass's great-circle screen keeps every circle through a leaf, and the
+// first direction at V_min on the way from n_MV is where a sampled arc first falls
+// below it, its D never above the constrained optimum.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,6 +31,7 @@
 #include "random_fans.h"
 #include "site_subdivision.h"
 #include "test_fans.h"
+#include "visibility_boundary.h"
 
 namespace blayer {
 namespace {
@@ -274,6 +277,88 @@ TEST(LinkVertexLens, RefusesACentreOutsideItsRegion) {
     EXPECT_LT(detail::link_vertex_lens_radius(g.dirs, away, thr, 0.5), 0.0) << "fan " << t;
   }
   EXPECT_GT(refused, 30);
+}
+
+// The first direction on the way from n_MV where V falls to V_min, against the arc
+// sampled at 5,001 points: V is V_min there, no sample before it is below V_min, and
+// it comes no later than the first sample that is. Towards random directions from the
+// CAD-like fans' n_MV (V_min = V*/2, as the solver's constraint).
+TEST(VisibilityBoundary, FirstDirectionIsWhereTheSampledArcFirstFallsBelowTheLimit) {
+  std::mt19937 rng(4040);
+  std::normal_distribution<double> gauss;
+  int crossed = 0, stayed_above = 0;
+  testing_fans::for_each_cad_fan(rng, {12, 24}, 4, [&](const FanGeometry& g, const std::string& label) {
+    const MostVisibleResult mv = most_visible_normal(g.face_normals);
+    if (!mv.feasible) return;
+    const double v_min = 0.5 * mv.visibility;
+    for (int t = 0; t < 4; ++t) {
+      const Vec3 to = normalized(Vec3{gauss(rng), gauss(rng), gauss(rng)});
+      const double end = angle_between(mv.normal, to);
+      const Vec3 b = normalized(to - dot(to, mv.normal) * mv.normal);
+      constexpr int kSamples = 5000;
+      double first_below = -1.0, step = end / kSamples;
+      for (int i = 0; i <= kSamples && first_below < 0.0; ++i)
+        if (fan_visibility(g, std::cos(i * step) * mv.normal + std::sin(i * step) * b) < v_min) first_below = i * step;
+      Vec3 n;
+      const bool found =
+          detail::first_direction_at_visibility(g.face_normals.data(), g.n_faces(), mv.normal, to, v_min, &n);
+      if (first_below < 0.0) {
+        // V may dip below V_min only between two samples; then the answer lies there.
+        ++stayed_above;
+        if (found) {
+          EXPECT_NEAR(fan_visibility(g, n), v_min, 1e-12) << label;
+        }
+        continue;
+      }
+      ++crossed;
+      ASSERT_TRUE(found) << label;
+      const double at = angle_between(mv.normal, n);
+      EXPECT_NEAR(norm(n), 1.0, 1e-14) << label;
+      EXPECT_NEAR(dot(n, cross(mv.normal, b)), 0.0, 1e-14) << label << ": off the arc";
+      EXPECT_NEAR(fan_visibility(g, n), v_min, 1e-12) << label;
+      EXPECT_LE(at, first_below + 1e-12) << label;
+      for (int i = 0; i * step < at - 1e-9; ++i)
+        ASSERT_GE(fan_visibility(g, std::cos(i * step) * mv.normal + std::sin(i * step) * b), v_min - 1e-12)
+            << label << ": sample " << i << " below the limit before the answer";
+    }
+  });
+  EXPECT_GT(crossed, 200);
+  EXPECT_GT(stayed_above, 20);
+}
+
+// Where the cap antipode is fluid but fails the constraint, the solver's floor is D at
+// the first direction where the way from n_MV towards the antipode meets V = V_min. A
+// floor above the constrained optimum would make the solver settle on it, so it must
+// stay below the enumeration's D*; on the rims, where the constraint binds, it comes
+// within 0.01 rad of it. The default solver keeps the enumeration's optimum.
+TEST(VisibilityBoundary, FloorOnTheConstraintStaysBelowTheConstrainedOptimum) {
+  std::mt19937 rng(5151);
+  int floors = 0, close_on_rims = 0;
+  testing_fans::for_each_cad_fan(rng, {12, 16, 20, 24}, 4, [&](const FanGeometry& g, const std::string& label) {
+    const MostVisibleResult mv = most_visible_normal(g.face_normals);
+    Tolerances cap_tol = default_tolerances();
+    cap_tol.min_visibility = 1e-12;
+    MostVisibleResult cap;
+    if (!mv.feasible || wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap) != WolfeOutcome::kCertified)
+      return;
+    const double v_min = 0.5 * mv.visibility;
+    const oracle::Link link = oracle::make_link(g.dirs);
+    if (oracle::fluid(link, -cap.normal) != 1 || fan_visibility(g, -cap.normal) >= v_min) return;
+    Vec3 n;
+    if (!detail::first_direction_at_visibility(g.face_normals.data(), g.n_faces(), mv.normal, -cap.normal, v_min, &n))
+      return;
+    if (oracle::fluid(link, n) != 1) return;
+    ++floors;
+    const MostNormalResult optimum = most_normal_by_enumeration(g, default_tolerances(), true);
+    const double floor = oracle::normality(link, n);
+    EXPECT_LE(floor, optimum.normality + default_tolerances().normality_tie) << label;
+    if (label.rfind("rim", 0) == 0 && optimum.status == NormalStatus::kVisibilityConstrained &&
+        floor > optimum.normality - 0.01)
+      ++close_on_rims;
+    EXPECT_TRUE(testing_fans::same_optimum(g, true, most_normal_normal(g), optimum)) << label;
+  });
+  EXPECT_GT(floors, 40);
+  EXPECT_GT(close_on_rims, 40);
 }
 
 // The envelope sweep emits a point of largest V inside the window, as high as the best
