@@ -32,7 +32,9 @@
 //      g >= threshold is an intersection of caps smaller than hemispheres, convex around
 //      the antipode of the smallest cap holding the link vertices; a circle-cover test
 //      bounds it by a cap (link_vertex_lens.h), and only that cap is searched. The
-//      antipode's own D is a lower bound (it never competes in the tie-break).
+//      antipode's own D is a lower bound (it never competes in the tie-break); where the
+//      antipode fails the constraint, the first direction at V_min on the way to it from
+//      n_MV gives the bound instead (visibility_boundary.h).
 //   b. Otherwise, fans of at most 12 sites run the enumeration with exact screens:
 //      a generator of a candidate that can still win is at D >= threshold from it, so an
 //      arc generator's pole lies within 90 deg - threshold of it (on the fluid side), a
