@@ -437,7 +437,9 @@ TEST(SamePlaneRuns, GroupConsecutiveFacesWithinTheToleranceOfTheirRunsFirstFace)
             continue;
           }
           ++runs;
-          if (j > 0) EXPECT_GT(norm(g.face_normals[j] - g.face_normals[first[j - 1]]), detail::kSamePlaneNormal) << j;
+          if (j > 0) {
+            EXPECT_GT(norm(g.face_normals[j] - g.face_normals[first[j - 1]]), detail::kSamePlaneNormal) << j;
+          }
         }
         if (offset == 0.0 && shape != testing_fans::CadShape::kSliver) {
           ++exact_fans;
