@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages blayer needs to build and test. Idempotent: packages
 # already present are skipped, and nothing is fetched when all are there.
 # Usage: scripts/install-deps.sh [--extras] [--fuzz]
-#   --extras: the picture and timing tools
+#   --extras: the picture, timing and instruction-counting tools
 #   --fuzz:   clang with libFuzzer and the sanitizer runtimes, and llvm-symbolizer for
 #             readable reports (scripts/fuzz.sh)
 set -euo pipefail
@@ -29,7 +29,7 @@ packages=(
 )
 for option in "$@"; do
   case "$option" in
-    --extras) packages+=(python3-vtk9 xvfb xauth bc time) ;;
+    --extras) packages+=(python3-vtk9 xvfb xauth bc time valgrind) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev llvm-14) ;;
     *) echo "install-deps.sh: unknown option $option" >&2; exit 1 ;;
   esac
