@@ -47,8 +47,8 @@
 #include <utility>
 #include <vector>
 
-#include "blayer/io/prepare_surface.h"
 #include "bench_fans.h"
+#include "blayer/io/prepare_surface.h"
 #include "blayer/normals/most_normal.h"
 #include "cad_fans.h"
 #include "front_march.h"
