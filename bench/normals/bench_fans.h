@@ -32,7 +32,7 @@ inline std::vector<FanGeometry> fans_of_valence(int k, std::size_t count = 64, b
       ring = testing_fans::quadric_fan(rng, k, k1, k2, 1e-3 * u(rng));
     } else {
       const double offset = exact ? 0.0 : (t % 3 == 0 ? 1e-5 : 1e-3);
-      ring = testing_fans::cad_like_fan(rng, static_cast<testing_fans::CadShape>(t % 4), k, offset);
+      ring = testing_fans::cad_like_fan(rng, testing_fans::kCadShapes[t % 4], k, offset);
     }
     FanGeometry g = testing_fans::geometry(ring);
     if (!g.any_degenerate) fans.push_back(std::move(g));

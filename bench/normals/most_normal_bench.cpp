@@ -192,8 +192,7 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(("ByValence/" + std::string(solver_name(s)) + "/" + std::to_string(k)).c_str(),
                                    by_valence, s, k, Family::kMixed);
     }
-  using testing_fans::CadShape;
-  for (CadShape shape : {CadShape::kRidge, CadShape::kCorner, CadShape::kRim, CadShape::kSliver})
+  for (testing_fans::CadShape shape : testing_fans::kCadShapes)
     for (int k : {20, 40, 60}) {
       const std::string label = std::string(testing_fans::cad_shape_name(shape)) + "/" + std::to_string(k);
       benchmark::RegisterBenchmark(("ByShape/default/" + label).c_str(), by_shape, shape, k, false);

@@ -49,8 +49,7 @@ class AnswerDigest {
 }
 
 bool shape_named(const std::string& name, testing_fans::CadShape* shape) {
-  using testing_fans::CadShape;
-  for (CadShape s : {CadShape::kRidge, CadShape::kCorner, CadShape::kRim, CadShape::kSliver})
+  for (testing_fans::CadShape s : testing_fans::kCadShapes)
     if (name == testing_fans::cad_shape_name(s)) {
       *shape = s;
       return true;

@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
       for (int t = 0; t < per_valence; ++t) {
         const double offset = exact ? 0.0 : (t % 3 == 0 ? 1e-5 : 1e-3);
         const FanGeometry g =
-            testing_fans::geometry(testing_fans::cad_like_fan(rng, static_cast<testing_fans::CadShape>(t % 4), k, offset));
+            testing_fans::geometry(testing_fans::cad_like_fan(rng, testing_fans::kCadShapes[t % 4], k, offset));
         if (g.any_degenerate) continue;
         MostNormalResult r;
         const double us = solve_us(g, &r);

@@ -45,7 +45,7 @@ std::vector<std::vector<Vec3>> sample_rings() {
     for (int t = 0; t < 150; ++t) rings.push_back(testing_fans::random_fan(rng, s));
   for (int t = 0; t < 200; ++t) rings.push_back(testing_fans::near_flat_fan(rng));
   for (int t = 0; t < 40; ++t)
-    rings.push_back(testing_fans::cad_like_fan(rng, static_cast<testing_fans::CadShape>(t % 4), 20 + t % 20, 1e-4));
+    rings.push_back(testing_fans::cad_like_fan(rng, testing_fans::kCadShapes[t % 4], 20 + t % 20, 1e-4));
   return rings;
 }
 
