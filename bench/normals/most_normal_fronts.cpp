@@ -7,7 +7,8 @@
 // the warm answers must equal the cold ones (same status, D within normality_tie,
 // direction within 1e-12 rad, or V not lower on ties). Prints per front the vertex solves
 // per second of each, their ratio, the hit rate of the warm certificates and the
-// differences found.
+// differences found, each described under its front (statuses, and how far apart the
+// two answers' D, directions and V are).
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -48,17 +49,29 @@ void run(const std::string& path, int fronts, double first_height) {
         compute_point_normals(march.surface, march.fans, NormalMethod::kMostNormal, default_tolerances(), &warm, &counts);
     const double t_warm = seconds_since(t0);
     long differences = 0;
+    std::vector<std::string> difference_lines;
     for (std::size_t v = 0; v < cold.normal.size(); ++v) {
       const bool tie = cold.status[v] == NormalStatus::kNonUnique || cold.status[v] == NormalStatus::kVisibilityConstrained;
       const bool same = cold.status[v] == hot.status[v] &&
                         std::fabs(cold.normality[v] - hot.normality[v]) <= default_tolerances().normality_tie &&
                         (angle_between(cold.normal[v], hot.normal[v]) <= 1e-12 ||
                          (tie && hot.visibility[v] >= cold.visibility[v] - 1e-12));
-      differences += same ? 0 : 1;
+      if (same) continue;
+      ++differences;
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "         point %zu: cold %s, warm %s, cold D %.12f, warm D - cold D %.3g (tie %.3g), "
+                    "directions %.3g rad apart, warm V - cold V %.3g\n",
+                    v, normal_status_name(cold.status[v]), normal_status_name(hot.status[v]), cold.normality[v],
+                    hot.normality[v] - cold.normality[v],
+                    default_tolerances().normality_tie, angle_between(cold.normal[v], hot.normal[v]),
+                    hot.visibility[v] - cold.visibility[v]);
+      difference_lines.push_back(line);
     }
     const double n = static_cast<double>(cold.normal.size());
     std::printf("  %5d  %9.3g  %10.0f  %10.0f  %8.2f   %6.3f (%ld/%ld)   %ld\n", f, height, n / t_cold, n / t_warm,
                 t_cold / t_warm, counts.hit_rate(), counts.hits, counts.warm, differences);
+    for (const std::string& line : difference_lines) std::fputs(line.c_str(), stdout);
     std::fflush(stdout);
     if (f > 0) {
       total_warm += counts.warm;
