@@ -24,7 +24,7 @@ command -v valgrind > /dev/null || { echo "error: valgrind not found (scripts/in
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 valgrind --tool=callgrind --callgrind-out-file="$work/out" "$exe" extrude "$surface" -o "$work/mesh.vtu" "$@" \
-  --threads 1 > "$work/stdout" 2> "$work/stderr" || { tail -n 20 "$work/stderr" >&2; exit 1; }
+  --threads 1 > "$work/stdout" 2> "$work/stderr" || { grep -v '^==' "$work/stderr" >&2; exit 1; }
 total=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$work/stderr")
 callgrind_annotate --inclusive=yes --threshold=100 "$work/out" > "$work/annotated"
 
