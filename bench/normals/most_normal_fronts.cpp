@@ -63,9 +63,8 @@ void run(const std::string& path, int fronts, double first_height) {
                     "         point %zu: cold %s, warm %s, cold D %.12f, warm D - cold D %.3g (tie %.3g), "
                     "directions %.3g rad apart, warm V - cold V %.3g\n",
                     v, normal_status_name(cold.status[v]), normal_status_name(hot.status[v]), cold.normality[v],
-                    hot.normality[v] - cold.normality[v],
-                    default_tolerances().normality_tie, angle_between(cold.normal[v], hot.normal[v]),
-                    hot.visibility[v] - cold.visibility[v]);
+                    hot.normality[v] - cold.normality[v], default_tolerances().normality_tie,
+                    angle_between(cold.normal[v], hot.normal[v]), hot.visibility[v] - cold.visibility[v]);
       difference_lines.push_back(line);
     }
     const double n = static_cast<double>(cold.normal.size());
