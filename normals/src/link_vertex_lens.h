@@ -8,10 +8,26 @@
 
 #include <vector>
 
+#include "blayer/core/tolerances.h"
 #include "blayer/core/vec3.h"
 
 namespace blayer {
 namespace detail {
+
+// The cap holding the link vertices (most_visible_normal of the link directions, whose
+// antipode is the centre here) needs only a positive margin to bound the region (its
+// radius below 90 degrees), not the visibility margin of a prism: near-flat links lie
+// within 1e-4 of a great circle. 1e-12 stays six orders above the rounding of its dot
+// products.
+constexpr double kLensCapMargin = 1e-12;
+
+// The tolerances the solver computes that cap with: tol, with kLensCapMargin for the
+// visibility margin.
+inline Tolerances lens_cap_tolerances(const Tolerances& tol) {
+  Tolerances cap = tol;
+  cap.min_visibility = kLensCapMargin;
+  return cap;
+}
 
 // The smallest radius r of the schedule 1e-7 * 4^m (m = 0, 1, ...), up to max_radius,
 // for which the circle {angle(n, centre) = r} is proved disjoint from L, so that

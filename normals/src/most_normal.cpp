@@ -81,12 +81,6 @@ bool bound_is_sharp(const FanGeometry& g, const FanSites& sites, const MostVisib
 constexpr double kLensThresholdMargin = 1e-9;
 constexpr double kMaxLensRadius = 0.5;
 
-// The cap holding the link vertices needs only a positive margin to bound the region
-// (its radius below 90 degrees), not the visibility margin of a prism: near-flat links
-// lie within 1e-4 of a great circle. 1e-12 stays six orders above the rounding of its
-// dot products.
-constexpr double kLensCapMargin = 1e-12;
-
 enum class Strategy { kEnumeration, kPrunedEnumeration, kSubdivision };
 
 // Winding number of the link around n (every triangle seen from n): one turn means a
@@ -221,8 +215,7 @@ bool default_passes(const FanGeometry& g, const FanSites& sites, const Tolerance
   // The cap antipode maximises the link-vertex bound g >= D; above 90 degrees the region
   // g >= threshold, which holds every candidate that can still become a maximiser, is
   // convex around it and often tiny (link_vertex_lens.h).
-  Tolerances cap_tol = tol;
-  cap_tol.min_visibility = kLensCapMargin;
+  const Tolerances cap_tol = detail::lens_cap_tolerances(tol);
   MostVisibleResult cap;
   // Where Wolfe's iteration stays uncertified the supports on the hull of the link
   // vertices give the cap (the enumeration's answer in O(k^2)), which keeps the search in

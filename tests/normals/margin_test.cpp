@@ -16,6 +16,7 @@
 
 #include "blayer/normals/most_visible.h"
 #include "cad_fans.h"
+#include "link_vertex_lens.h"
 #include "normal_hull.h"
 #include "test_fans.h"
 
@@ -228,8 +229,7 @@ bool expect_same_most_visible(const std::vector<Vec3>& f, const std::string& wha
 // face normals.
 TEST(MostVisibleOnHull, MatchesTheEnumerationOnCadLikeFans) {
   std::mt19937 rng(2029);
-  Tolerances cap_tol = default_tolerances();
-  cap_tol.min_visibility = 1e-12;
+  const Tolerances cap_tol = detail::lens_cap_tolerances(default_tolerances());
   int n = 0, uncertified_feasible = 0, on_hull = 0;
   std::vector<std::array<int, 3>> facets;
   testing_fans::for_each_cad_fan(rng, {12, 24, 40, 60}, 2, [&](const FanGeometry& g, const std::string& label) {
@@ -255,8 +255,7 @@ TEST(MostVisibleOnHull, MatchesTheEnumerationOnCadLikeFans) {
 TEST(WolfeMinNormPoint, CertifiesTheNearlyCoplanarNormalsOfANoisyPole) {
   std::mt19937 rng(404);
   std::normal_distribution<double> nd;
-  Tolerances cap_tol = default_tolerances();
-  cap_tol.min_visibility = 1e-12;
+  const Tolerances cap_tol = detail::lens_cap_tolerances(default_tolerances());
   for (int k : {16, 48})
     for (double noise : {1e-12, 1e-9, 1e-7}) {
       std::vector<Vec3> ring;

@@ -223,8 +223,7 @@ TEST(LinkVertexLens, HoldsEverySampledDirectionOfItsRegion) {
   for (int t = 0; t < 300; ++t) {
     const FanGeometry g = testing_fans::geometry(t % 2 ? testing_fans::skin_fan(rng)
                                                        : testing_fans::random_fan(rng, Shape::kConvex));
-    Tolerances cap_tol = default_tolerances();
-    cap_tol.min_visibility = 1e-12;
+    const Tolerances cap_tol = detail::lens_cap_tolerances(default_tolerances());
     MostVisibleResult cap;
     if (wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap) != WolfeOutcome::kCertified) continue;
     const Vec3 centre = -cap.normal;
@@ -259,8 +258,7 @@ TEST(LinkVertexLens, RefusesACentreOutsideItsRegion) {
   int refused = 0;
   for (int t = 0; t < 100; ++t) {
     const FanGeometry g = testing_fans::geometry(testing_fans::skin_fan(rng));
-    Tolerances cap_tol = default_tolerances();
-    cap_tol.min_visibility = 1e-12;
+    const Tolerances cap_tol = detail::lens_cap_tolerances(default_tolerances());
     MostVisibleResult cap;
     if (wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap) != WolfeOutcome::kCertified) continue;
     const double target = M_PI - std::acos(std::min(1.0, cap.visibility));
@@ -336,8 +334,7 @@ TEST(VisibilityBoundary, FloorOnTheConstraintStaysBelowTheConstrainedOptimum) {
   int floors = 0, close_on_rims = 0;
   testing_fans::for_each_cad_fan(rng, {12, 16, 20, 24}, 4, [&](const FanGeometry& g, const std::string& label) {
     const MostVisibleResult mv = most_visible_normal(g.face_normals);
-    Tolerances cap_tol = default_tolerances();
-    cap_tol.min_visibility = 1e-12;
+    const Tolerances cap_tol = detail::lens_cap_tolerances(default_tolerances());
     MostVisibleResult cap;
     if (!mv.feasible || wolfe_min_norm_point(g.dirs.data(), g.n_faces(), cap_tol, &cap) != WolfeOutcome::kCertified)
       return;
